@@ -1,0 +1,68 @@
+!> The one way Fracas reports a failure: a message on standard error, then a
+!> non-zero exit. Input errors name file:line:column and what was expected.
+!> Before the exit, registered clean-up (e.g. marking partial output) runs.
+module fracas_errors
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  implicit none
+  private
+  public :: fatal, input_error, warn, set_cleanup, cleanup_proc
+
+  abstract interface
+    subroutine cleanup_proc()
+    end subroutine cleanup_proc
+  end interface
+
+  procedure(cleanup_proc), pointer :: cleanup => null()
+  logical :: in_cleanup = .false.
+
+contains
+
+  !> Register a procedure run once before a fatal exit (at most one).
+  subroutine set_cleanup(proc)
+    procedure(cleanup_proc) :: proc
+    cleanup => proc
+  end subroutine set_cleanup
+
+  !> Stop the run with a message (exit status 1).
+  subroutine fatal(message)
+    character(len=*), intent(in) :: message
+    write (error_unit, '(a)') 'fracas: error: '//trim(message)
+    call run_cleanup()
+    error stop 1
+  end subroutine fatal
+
+  !> Stop the run on bad input: "FILE:LINE:COL: message" (exit status 1).
+  !> line or col <= 0 are left out (a whole-file or whole-line problem).
+  subroutine input_error(file, line, col, message)
+    character(len=*), intent(in) :: file, message
+    integer, intent(in) :: line, col
+    character(len=:), allocatable :: where
+    where = trim(file)
+    if (line > 0) where = where//':'//itoa(line)
+    if (line > 0 .and. col > 0) where = where//':'//itoa(col)
+    write (error_unit, '(a)') where//': '//trim(message)
+    call run_cleanup()
+    error stop 1
+  end subroutine input_error
+
+  !> A warning on standard error; the run goes on.
+  subroutine warn(message)
+    character(len=*), intent(in) :: message
+    write (error_unit, '(a)') 'fracas: warning: '//trim(message)
+  end subroutine warn
+
+  subroutine run_cleanup()
+    if (associated(cleanup) .and. .not. in_cleanup) then
+      in_cleanup = .true.
+      call cleanup()
+    end if
+  end subroutine run_cleanup
+
+  pure function itoa(i) result(s)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=16) :: buf
+    write (buf, '(i0)') i
+    s = trim(buf)
+  end function itoa
+end module fracas_errors

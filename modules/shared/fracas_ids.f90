@@ -1,0 +1,44 @@
+!> Integer ids and their LMGC90 names for contact statuses and interaction types.
+!> Output files store the integer; the name tables are written next to them.
+module fracas_ids
+  implicit none
+  private
+  public :: n_status, status_names, st_noctc, st_stick, st_slifw, st_slibw, st_noact, &
+            st_cnctc, st_cstck, st_cslfw, st_cslbw, status_id, &
+            n_inter, inter_names, i_dkdkx, i_dkjcx, i_dkkdx, i_dkplx, i_plplx, i_pljcx, inter_id
+
+  ! Statuses: 'C' variants are cohesive contacts (the glue is not yet broken).
+  integer, parameter :: st_noctc = 1, st_stick = 2, st_slifw = 3, st_slibw = 4, st_noact = 5, &
+                        st_cnctc = 6, st_cstck = 7, st_cslfw = 8, st_cslbw = 9
+  integer, parameter :: n_status = 9
+  character(len=5), parameter :: status_names(n_status) = &
+    [character(len=5) :: 'noctc', 'stick', 'slifw', 'slibw', 'noact', 'Cnctc', 'Cstck', 'Cslfw', 'Cslbw']
+
+  integer, parameter :: i_dkdkx = 1, i_dkjcx = 2, i_dkkdx = 3, i_dkplx = 4, i_plplx = 5, i_pljcx = 6
+  integer, parameter :: n_inter = 6
+  character(len=5), parameter :: inter_names(n_inter) = &
+    [character(len=5) :: 'DKDKx', 'DKJCx', 'DKKDx', 'DKPLx', 'PLPLx', 'PLJCx']
+
+contains
+
+  !> Id of a status name, 0 if unknown. LMGC90's 'nknow' and 'vnish' read as noctc.
+  pure integer function status_id(name) result(id)
+    character(len=*), intent(in) :: name
+    integer :: i
+    id = 0
+    do i = 1, n_status
+      if (name == status_names(i)) id = i
+    end do
+    if (name == 'nknow' .or. name == 'vnish') id = st_noctc
+  end function status_id
+
+  !> Id of an interaction type name, 0 if unknown.
+  pure integer function inter_id(name) result(id)
+    character(len=*), intent(in) :: name
+    integer :: i
+    id = 0
+    do i = 1, n_inter
+      if (name == inter_names(i)) id = i
+    end do
+  end function inter_id
+end module fracas_ids
