@@ -1,0 +1,142 @@
+!> Contact laws as pure procedures. Each law is rewritten as a shifted
+!> Signorini–Coulomb problem on the local velocity (LMGC90's change of
+!> variables): the local solver sees u~ = u + shift, with friction mu, and
+!> never needs to know which law it is solving.
+module fracas_contact_laws
+  use fracas_kinds, only: wp
+  use fracas_deck, only: law_input_t
+  use fracas_errors, only: input_error
+  use fracas_ids, only: st_slifw, st_slibw, st_cslfw, st_cslbw
+  implicit none
+  private
+  public :: law_t, law_from_input, law_friction, law_shift, &
+            law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
+            law_vel_sgr_clb, law_rst_ds_clb
+
+  integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
+                        law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
+                        law_rst_ds_clb = 7
+
+  !> A contact law ready for the solver.
+  type :: law_t
+    character(len=5) :: nickname = ''
+    character(len=30) :: name = ''
+    integer :: kind = 0
+    real(wp) :: mu_dynamic = 0.0_wp   !< friction used after sliding
+    real(wp) :: mu_static = 0.0_wp    !< friction used otherwise
+    real(wp) :: restn = 0.0_wp, restt = 0.0_wp  !< Newton restitution (RST laws)
+  end type law_t
+
+contains
+
+  !> Build a law from its TACT_BEHAV.DAT record (parameters in LMGC90's order).
+  function law_from_input(inp) result(law)
+    type(law_input_t), intent(in) :: inp
+    type(law_t) :: law
+    law%nickname = inp%nickname
+    law%name = inp%name
+    select case (trim(inp%name))
+    case ('IQS_CLB')
+      law%kind = law_iqs_clb
+      call set_mu(param(1), param(1))
+    case ('GAP_SGR_CLB')
+      law%kind = law_gap_sgr_clb
+      call set_mu(param(1), param(1))
+    case ('VEL_SGR_CLB')
+      law%kind = law_vel_sgr_clb
+      call set_mu(param(1), param(1))
+    case ('IQS_DS_CLB')
+      law%kind = law_iqs_ds_clb
+      call set_mu(param(1), param(2))
+    case ('GAP_SGR_DS_CLB')
+      law%kind = law_gap_sgr_ds_clb
+      call set_mu(param(1), param(2))
+    case ('RST_CLB')
+      law%kind = law_rst_clb
+      law%restn = param(1)
+      law%restt = param(2)
+      call set_mu(param(3), param(3))
+    case ('RST_DS_CLB')
+      law%kind = law_rst_ds_clb
+      law%restn = param(1)
+      law%restt = param(2)
+      call set_mu(param(3), param(4))
+    case default
+      call input_error(inp%src%file, inp%src%line, 9, "contact law '"//trim(inp%name)// &
+        "' is read but not supported by the solver yet (supported: IQS_CLB, GAP_SGR_CLB, "// &
+        "VEL_SGR_CLB, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB)")
+    end select
+    if (law%mu_dynamic < 0.0_wp .or. law%mu_static < 0.0_wp) &
+      call input_error(inp%src%file, inp%src%line, 0, "friction coefficient of law '"// &
+        trim(inp%nickname)//"' must be >= 0")
+    if (law%restn < 0.0_wp .or. law%restn > 1.0_wp) &
+      call input_error(inp%src%file, inp%src%line, 0, "normal restitution of law '"// &
+        trim(inp%nickname)//"' must be in [0, 1]")
+
+  contains
+
+    real(wp) function param(i)
+      integer, intent(in) :: i
+      if (.not. allocated(inp%params)) then
+        param = 0.0_wp
+      else if (i > size(inp%params)) then
+        call input_error(inp%src%file, inp%src%line, 0, "law '"//trim(inp%nickname)// &
+          "' has too few parameters")
+        param = 0.0_wp
+      else
+        param = inp%params(i)
+      end if
+    end function param
+
+    subroutine set_mu(dynamic, static)
+      real(wp), intent(in) :: dynamic, static
+      law%mu_dynamic = dynamic
+      law%mu_static = static
+    end subroutine set_mu
+  end function law_from_input
+
+  !> Friction coefficient for this step: dynamic if the contact was sliding at
+  !> the end of the previous step, static otherwise (equal for non-DS laws).
+  pure real(wp) function law_friction(law, status_begin) result(mu)
+    type(law_t), intent(in) :: law
+    integer, intent(in) :: status_begin
+    select case (status_begin)
+    case (st_slifw, st_slibw, st_cslfw, st_cslbw)
+      mu = law%mu_dynamic
+    case default
+      mu = law%mu_static
+    end select
+  end function law_friction
+
+  !> Shift of the local velocity that turns the law into Signorini–Coulomb on
+  !> u~ = u + shift: u~n >= 0, Rn >= 0, u~n Rn = 0, Coulomb on (u~t, R).
+  !> gap: gap at the detection configuration; h: time step; u_begin: local
+  !> relative velocity (t, n) at the beginning of the step. active = .false.
+  !> means the contact takes no reaction this step (RST laws while open).
+  pure subroutine law_shift(law, gap, h, u_begin, shift, active)
+    type(law_t), intent(in) :: law
+    real(wp), intent(in) :: gap, h, u_begin(2)
+    real(wp), intent(out) :: shift(2)
+    logical, intent(out) :: active
+    shift = 0.0_wp
+    active = .true.
+    select case (law%kind)
+    case (law_iqs_clb, law_iqs_ds_clb)
+      ! Inelastic quasi-shock: an existing overlap is forgiven, not pushed out.
+      shift(2) = max(0.0_wp, gap) / h
+    case (law_gap_sgr_clb, law_gap_sgr_ds_clb)
+      ! Signorini on the predicted end gap: overlaps are corrected.
+      shift(2) = gap / h
+    case (law_vel_sgr_clb)
+      active = gap <= 0.0_wp
+    case (law_rst_clb, law_rst_ds_clb)
+      ! Newton restitution once the contact is closed: u+ + e u- >= 0.
+      if (gap <= 0.0_wp) then
+        shift(1) = law%restt * u_begin(1)
+        shift(2) = law%restn * u_begin(2)
+      else
+        active = .false.
+      end if
+    end select
+  end subroutine law_shift
+end module fracas_contact_laws

@@ -1,0 +1,164 @@
+!> 2D rigid bodies (x, y, rotation), stored as arrays over bodies. This module
+!> knows masses, external forces, driven degrees of freedom and the
+!> Moreau–Jean update; it knows nothing about contacts: the solver adds
+!> impulses to `v` through the inverse masses.
+module fracas_rbdy2
+  use fracas_kinds, only: wp
+  use fracas_deck, only: driven_dof_input_t
+  use fracas_errors, only: input_error
+  implicit none
+  private
+  public :: rbdy2_t, drive_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
+            rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy, drive_value
+
+  !> A driven degree of freedom: imposed velocity or added force, as a function of time.
+  type :: drive_t
+    integer :: body = 0, dof = 0
+    logical :: is_velocity = .true.
+    real(wp) :: ct = 0.0_wp, amp = 0.0_wp, omega = 0.0_wp, phi = 0.0_wp, rampi = 0.0_wp, ramp = 0.0_wp
+    real(wp), allocatable :: evo_t(:), evo_v(:)   !< evolution table, used if allocated
+  end type drive_t
+
+  type :: rbdy2_t
+    integer :: n = 0
+    integer, allocatable :: number(:)           !< serial number in BODIES.DAT
+    real(wp), allocatable :: ref(:, :)          !< (3,n) reference x, y, angle
+    real(wp), allocatable :: x(:, :), xbegin(:, :)   !< displacement from ref
+    real(wp), allocatable :: v(:, :), vbegin(:, :), vfree(:, :)
+    real(wp), allocatable :: fext(:, :)         !< theta-averaged external force of the step
+    real(wp), allocatable :: mass(:, :)         !< (3,n): m, m, I
+    real(wp), allocatable :: inv_mass(:, :)     !< 0 on driven dofs
+    real(wp), allocatable :: avrd(:)            !< average radius (for outputs)
+    logical, allocatable :: driven(:, :)        !< velocity-driven dofs
+    logical, allocatable :: clamped(:)          !< every dof velocity-driven
+    real(wp) :: gravity(2) = 0.0_wp
+    type(drive_t), allocatable :: drives(:)
+  end type rbdy2_t
+
+contains
+
+  !> Bodies at rest in their reference configuration.
+  subroutine rbdy2_init(b, number, ref, mass, inertia, avrd, gravity)
+    type(rbdy2_t), intent(out) :: b
+    integer, intent(in) :: number(:)
+    real(wp), intent(in) :: ref(:, :), mass(:), inertia(:), avrd(:), gravity(2)
+    integer :: n
+    n = size(number)
+    b%n = n
+    b%number = number
+    b%ref = ref
+    b%avrd = avrd
+    b%gravity = gravity
+    allocate (b%x(3, n), b%xbegin(3, n), b%v(3, n), b%vbegin(3, n), b%vfree(3, n), b%fext(3, n), &
+              b%mass(3, n), b%inv_mass(3, n), b%driven(3, n), b%clamped(n))
+    b%x = 0.0_wp; b%xbegin = 0.0_wp; b%v = 0.0_wp; b%vbegin = 0.0_wp; b%vfree = 0.0_wp; b%fext = 0.0_wp
+    b%mass(1, :) = mass
+    b%mass(2, :) = mass
+    b%mass(3, :) = inertia
+    b%inv_mass = 1.0_wp / b%mass
+    b%driven = .false.
+    b%clamped = .false.
+    allocate (b%drives(0))
+  end subroutine rbdy2_init
+
+  !> Add a driven dof read from DRV_DOF.DAT (body serial number = index).
+  subroutine rbdy2_add_drive(b, inp)
+    type(rbdy2_t), intent(inout) :: b
+    type(driven_dof_input_t), intent(in) :: inp
+    type(drive_t) :: d
+    if (inp%body < 1 .or. inp%body > b%n) &
+      call input_error(inp%src%file, inp%src%line, 9, 'driven body number out of range')
+    d%body = inp%body
+    d%dof = inp%dof
+    d%is_velocity = inp%kind == 'vlocy'
+    d%ct = inp%ct; d%amp = inp%amp; d%omega = inp%omega; d%phi = inp%phi
+    d%rampi = inp%rampi; d%ramp = inp%ramp
+    if (inp%evolution) then
+      d%evo_t = inp%evo_t
+      d%evo_v = inp%evo_v
+    end if
+    b%drives = [b%drives, d]
+    if (d%is_velocity) then
+      b%driven(d%dof, d%body) = .true.
+      b%inv_mass(d%dof, d%body) = 0.0_wp
+      b%clamped(d%body) = all(b%driven(:, d%body))
+    end if
+  end subroutine rbdy2_add_drive
+
+  !> Value of a driven dof at time t: (CT + AMP cos(OMEGA t + PHI)) min(1, RAMPI + RAMP t),
+  !> or the linear interpolation of its evolution table (end segments extrapolated).
+  pure real(wp) function drive_value(d, t) result(val)
+    type(drive_t), intent(in) :: d
+    real(wp), intent(in) :: t
+    integer :: lo, hi, mid, n
+    if (allocated(d%evo_t)) then
+      n = size(d%evo_t)
+      if (n == 1) then
+        val = d%evo_v(1)
+        return
+      end if
+      lo = 1; hi = n
+      do while (hi - lo > 1)
+        mid = (lo + hi) / 2
+        if (d%evo_t(mid) <= t) then
+          lo = mid
+        else
+          hi = mid
+        end if
+      end do
+      val = d%evo_v(lo) + (d%evo_v(hi) - d%evo_v(lo)) * (t - d%evo_t(lo)) / (d%evo_t(hi) - d%evo_t(lo))
+    else
+      val = (d%ct + d%amp * cos(d%omega * t + d%phi)) * min(1.0_wp, d%rampi + d%ramp * t)
+    end if
+  end function drive_value
+
+  !> Start of a step [t, t+h]: external forces (gravity, theta-averaged driven
+  !> forces), free velocity, imposed velocities at t+h. Sets v = vfree.
+  subroutine rbdy2_begin_step(b, t, h, theta)
+    type(rbdy2_t), intent(inout) :: b
+    real(wp), intent(in) :: t, h, theta
+    integer :: i, k
+    do i = 1, b%n
+      b%fext(1, i) = b%mass(1, i) * b%gravity(1)
+      b%fext(2, i) = b%mass(2, i) * b%gravity(2)
+      b%fext(3, i) = 0.0_wp
+    end do
+    do k = 1, size(b%drives)
+      associate (d => b%drives(k))
+        if (.not. d%is_velocity) b%fext(d%dof, d%body) = b%fext(d%dof, d%body) + &
+          (1.0_wp - theta) * drive_value(d, t) + theta * drive_value(d, t + h)
+      end associate
+    end do
+    b%vfree = b%vbegin + h * b%inv_mass * b%fext
+    do k = 1, size(b%drives)
+      associate (d => b%drives(k))
+        if (d%is_velocity) b%vfree(d%dof, d%body) = drive_value(d, t + h)
+      end associate
+    end do
+    b%v = b%vfree
+  end subroutine rbdy2_begin_step
+
+  !> Configuration where contacts are detected: ref + xbegin + (1-theta) h vbegin.
+  pure subroutine rbdy2_detection_coor(b, h, theta, q)
+    type(rbdy2_t), intent(in) :: b
+    real(wp), intent(in) :: h, theta
+    real(wp), intent(out) :: q(:, :)
+    q = b%ref + b%xbegin + (1.0_wp - theta) * h * b%vbegin
+  end subroutine rbdy2_detection_coor
+
+  !> End of a step: theta rule for the positions, then the end state becomes the
+  !> begin state of the next step.
+  subroutine rbdy2_end_step(b, h, theta)
+    type(rbdy2_t), intent(inout) :: b
+    real(wp), intent(in) :: h, theta
+    b%x = b%xbegin + h * ((1.0_wp - theta) * b%vbegin + theta * b%v)
+    b%xbegin = b%x
+    b%vbegin = b%v
+  end subroutine rbdy2_end_step
+
+  !> Kinetic energy of the free (not velocity-driven) dofs.
+  pure real(wp) function rbdy2_kinetic_energy(b) result(e)
+    type(rbdy2_t), intent(in) :: b
+    e = 0.5_wp * sum(b%mass * b%v**2, mask=.not. b%driven)
+  end function rbdy2_kinetic_energy
+end module fracas_rbdy2

@@ -1,0 +1,134 @@
+!> Contactors: the shapes attached to bodies (DISKx, xKSID, JONCx), as one flat
+!> list over all bodies. A contactor maps to its body; its geometry is given in
+!> the body frame and placed with the body's configuration.
+module fracas_contactors
+  use fracas_kinds, only: wp
+  use fracas_deck, only: body_input_t
+  use fracas_errors, only: input_error
+  implicit none
+  private
+  public :: tactors_t, tactors_build, tactor_center, tactor_kind_name, body_area_inertia, &
+            tk_disk, tk_xksid, tk_jonc
+
+  integer, parameter :: tk_disk = 1, tk_xksid = 2, tk_jonc = 3
+  real(wp), parameter :: pi = acos(-1.0_wp)
+
+  type :: tactors_t
+    integer :: n = 0
+    integer, allocatable :: kind(:)        !< tk_*
+    integer, allocatable :: body(:)        !< owning body index
+    integer, allocatable :: rank(:)        !< rank of the contactor within its body (1-based)
+    integer, allocatable :: kind_index(:)  !< index among the contactors of the same kind
+    character(len=5), allocatable :: color(:)
+    real(wp), allocatable :: radius(:)     !< DISKx, xKSID radius
+    real(wp), allocatable :: ax1(:), ax2(:) !< JONCx half length, half thickness
+    real(wp), allocatable :: shift(:, :)   !< (2,n) offset in the body frame
+    real(wp), allocatable :: bound(:)      !< radius of a circle around the contactor centre holding it
+  end type tactors_t
+
+contains
+
+  pure function tactor_kind_name(kind) result(name)
+    integer, intent(in) :: kind
+    character(len=5) :: name
+    select case (kind)
+    case (tk_disk); name = 'DISKx'
+    case (tk_xksid); name = 'xKSID'
+    case (tk_jonc); name = 'JONCx'
+    case default; name = '?????'
+    end select
+  end function tactor_kind_name
+
+  !> Flatten the contactors of all bodies into one list.
+  subroutine tactors_build(bodies, t)
+    type(body_input_t), intent(in) :: bodies(:)
+    type(tactors_t), intent(out) :: t
+    integer :: ib, it, k, n, counts(3)
+    n = 0
+    do ib = 1, size(bodies)
+      if (allocated(bodies(ib)%tactors)) n = n + size(bodies(ib)%tactors)
+    end do
+    t%n = n
+    allocate (t%kind(n), t%body(n), t%rank(n), t%kind_index(n), t%color(n), t%radius(n), t%ax1(n), &
+              t%ax2(n), t%shift(2, n), t%bound(n))
+    k = 0
+    counts = 0
+    do ib = 1, size(bodies)
+      if (.not. allocated(bodies(ib)%tactors)) cycle
+      do it = 1, size(bodies(ib)%tactors)
+        k = k + 1
+        associate (inp => bodies(ib)%tactors(it))
+          select case (inp%kind)
+          case ('DISKx', 'DISKb')
+            t%kind(k) = tk_disk
+          case ('xKSID')
+            t%kind(k) = tk_xksid
+          case ('JONCx')
+            t%kind(k) = tk_jonc
+          case default
+            call input_error(inp%src%file, inp%src%line, 2, "contactor '"//inp%kind// &
+              "' is read but not supported by the solver yet (supported: DISKx, xKSID, JONCx)")
+          end select
+          counts(t%kind(k)) = counts(t%kind(k)) + 1
+          t%kind_index(k) = counts(t%kind(k))
+          t%body(k) = ib
+          t%rank(k) = it
+          t%color(k) = inp%color
+          t%radius(k) = inp%radius
+          t%ax1(k) = inp%ax1
+          t%ax2(k) = inp%ax2
+          t%shift(:, k) = inp%shift
+          select case (t%kind(k))
+          case (tk_jonc)
+            t%bound(k) = inp%ax1 + inp%ax2
+          case default
+            t%bound(k) = inp%radius
+          end select
+        end associate
+      end do
+    end do
+  end subroutine tactors_build
+
+  !> Centre of contactor k for a body configuration q = (x, y, angle).
+  pure function tactor_center(t, k, q) result(c)
+    type(tactors_t), intent(in) :: t
+    integer, intent(in) :: k
+    real(wp), intent(in) :: q(3)
+    real(wp) :: c(2), cs, sn
+    cs = cos(q(3)); sn = sin(q(3))
+    c(1) = q(1) + cs * t%shift(1, k) - sn * t%shift(2, k)
+    c(2) = q(2) + sn * t%shift(1, k) + cs * t%shift(2, k)
+  end function tactor_center
+
+  !> Area and polar second moment (about the body node) of a body's contactors,
+  !> per unit density and unit thickness; used when avrd/gyrd are given as 0.
+  subroutine body_area_inertia(body, area, inertia)
+    type(body_input_t), intent(in) :: body
+    real(wp), intent(out) :: area, inertia
+    integer :: it
+    real(wp) :: a, i0, arect, acap, d, e
+    area = 0.0_wp
+    inertia = 0.0_wp
+    if (.not. allocated(body%tactors)) return
+    do it = 1, size(body%tactors)
+      associate (tc => body%tactors(it))
+        select case (tc%kind)
+        case ('JONCx')
+          ! Rectangle 2ax1 x 2ax2 plus two half disks of radius ax2 at the ends.
+          arect = 4.0_wp * tc%ax1 * tc%ax2
+          acap = 0.5_wp * pi * tc%ax2**2
+          d = tc%ax1
+          e = 4.0_wp * tc%ax2 / (3.0_wp * pi)       ! centroid offset of a half disk
+          a = arect + 2.0_wp * acap
+          i0 = arect * (tc%ax1**2 + tc%ax2**2) / 3.0_wp + &
+               2.0_wp * (acap * 0.5_wp * tc%ax2**2 + acap * (d**2 + 2.0_wp * d * e))
+        case default   ! DISKx, xKSID: a full disk
+          a = pi * tc%radius**2
+          i0 = 0.5_wp * a * tc%radius**2
+        end select
+        area = area + a
+        inertia = inertia + i0 + a * sum(tc%shift**2)
+      end associate
+    end do
+  end subroutine body_area_inertia
+end module fracas_contactors

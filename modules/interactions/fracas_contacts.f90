@@ -1,0 +1,123 @@
+!> The contact store shared by all interaction types: flat arrays over
+!> contacts (structure of arrays), filled by the detection and read by the
+!> solver. Also the history of the previous step (warm start, statuses),
+!> indexed by candidate contactor so a new contact finds its past in O(1).
+module fracas_contacts
+  use fracas_kinds, only: wp
+  implicit none
+  private
+  public :: contacts_t, history_t, contacts_reserve, contacts_clear, history_from_contacts, &
+            history_find, history_build
+
+  type :: contacts_t
+    integer :: n = 0
+    integer, allocatable :: inter(:)         !< interaction type id (fracas_ids)
+    integer, allocatable :: cd(:), an(:)     !< candidate / antagonist contactor
+    integer, allocatable :: cdb(:), anb(:)   !< their bodies
+    integer, allocatable :: law(:)           !< index in the law table
+    integer, allocatable :: status(:), status_begin(:)
+    real(wp), allocatable :: normal(:, :)    !< (2,n), from antagonist to candidate; t = (n2, -n1)
+    real(wp), allocatable :: point(:, :)     !< (2,n) contact point (detection configuration)
+    real(wp), allocatable :: gap(:)          !< gap at the detection configuration
+    real(wp), allocatable :: lever(:, :)     !< (4,n): (P-c_cd)x t, (P-c_cd)x n, (P-c_an)x t, (P-c_an)x n
+    real(wp), allocatable :: w(:, :)         !< (4,n) Delassus block: tt, tn, nt, nn
+    real(wp), allocatable :: shift(:, :)     !< (2,n) law shift of the local velocity
+    real(wp), allocatable :: mu(:)           !< friction this step
+    logical, allocatable :: active(:)        !< .false.: no reaction this step (open RST contact)
+    real(wp), allocatable :: r(:, :)         !< (2,n) impulses (t, n)
+    real(wp), allocatable :: u(:, :)         !< (2,n) relative velocity at the end of the step
+    real(wp), allocatable :: u_begin(:, :)   !< (2,n) relative velocity at the beginning
+  end type contacts_t
+
+  !> Contacts of the previous step, grouped by candidate contactor.
+  type :: history_t
+    integer :: n = 0
+    integer, allocatable :: first(:)         !< (ntactors+1) offsets into the lists
+    integer, allocatable :: inter(:), an(:), status(:)
+    real(wp), allocatable :: force(:, :)     !< (2,n) reaction / time step
+  end type history_t
+
+contains
+
+  !> Make room for at least n contacts (keeps nothing: the store is refilled each step).
+  subroutine contacts_reserve(c, n)
+    type(contacts_t), intent(inout) :: c
+    integer, intent(in) :: n
+    integer :: cap
+    if (allocated(c%inter)) then
+      if (size(c%inter) >= n) return
+      call free_all()
+    end if
+    cap = max(16, n + n / 2)
+    allocate (c%inter(cap), c%cd(cap), c%an(cap), c%cdb(cap), c%anb(cap), c%law(cap), c%status(cap), &
+              c%status_begin(cap), c%normal(2, cap), c%point(2, cap), c%gap(cap), c%lever(4, cap), &
+              c%w(4, cap), c%shift(2, cap), c%mu(cap), c%active(cap), c%r(2, cap), c%u(2, cap), &
+              c%u_begin(2, cap))
+  contains
+    subroutine free_all()
+      deallocate (c%inter, c%cd, c%an, c%cdb, c%anb, c%law, c%status, c%status_begin, c%normal, &
+                  c%point, c%gap, c%lever, c%w, c%shift, c%mu, c%active, c%r, c%u, c%u_begin)
+    end subroutine free_all
+  end subroutine contacts_reserve
+
+  subroutine contacts_clear(c)
+    type(contacts_t), intent(inout) :: c
+    c%n = 0
+  end subroutine contacts_clear
+
+  !> Group records (cd, an, inter, status, force) by candidate contactor.
+  subroutine history_build(hist, ntactors, cd, an, inter, status, force)
+    type(history_t), intent(out) :: hist
+    integer, intent(in) :: ntactors, cd(:), an(:), inter(:), status(:)
+    real(wp), intent(in) :: force(:, :)
+    integer :: k, n, pos
+    integer, allocatable :: fill(:)
+    n = size(cd)
+    hist%n = n
+    allocate (hist%first(ntactors + 1), hist%inter(n), hist%an(n), hist%status(n), hist%force(2, n))
+    hist%first = 0
+    do k = 1, n
+      hist%first(cd(k) + 1) = hist%first(cd(k) + 1) + 1
+    end do
+    hist%first(1) = 1
+    do k = 1, ntactors
+      hist%first(k + 1) = hist%first(k + 1) + hist%first(k)
+    end do
+    fill = hist%first(1:ntactors)
+    do k = 1, n
+      pos = fill(cd(k))
+      fill(cd(k)) = pos + 1
+      hist%inter(pos) = inter(k)
+      hist%an(pos) = an(k)
+      hist%status(pos) = status(k)
+      hist%force(:, pos) = force(:, k)
+    end do
+  end subroutine history_build
+
+  !> History of the current contacts: reactions stored as forces (impulse / h).
+  subroutine history_from_contacts(hist, c, ntactors, h)
+    type(history_t), intent(out) :: hist
+    type(contacts_t), intent(in) :: c
+    integer, intent(in) :: ntactors
+    real(wp), intent(in) :: h
+    integer :: n
+    n = c%n
+    call history_build(hist, ntactors, c%cd(1:n), c%an(1:n), c%inter(1:n), c%status(1:n), c%r(:, 1:n) / h)
+  end subroutine history_from_contacts
+
+  !> Index of the past contact (inter, cd, an), 0 if there is none.
+  pure integer function history_find(hist, inter, cd, an) result(pos)
+    type(history_t), intent(in) :: hist
+    integer, intent(in) :: inter, cd, an
+    integer :: k
+    pos = 0
+    if (.not. allocated(hist%first)) return
+    if (cd + 1 > size(hist%first)) return
+    do k = hist%first(cd), hist%first(cd + 1) - 1
+      if (hist%an(k) == an .and. hist%inter(k) == inter) then
+        pos = k
+        return
+      end if
+    end do
+  end function history_find
+end module fracas_contacts

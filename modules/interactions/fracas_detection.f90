@@ -1,0 +1,359 @@
+!> Contact detection: the see table (which contactor classes meet, with which
+!> law and alert distance), the broad phase with cell lists (cost linear in the
+!> number of contactors) and the fine detection per interaction type.
+module fracas_detection
+  use fracas_kinds, only: wp
+  use fracas_deck, only: see_rule_input_t
+  use fracas_errors, only: input_error
+  use fracas_ids, only: i_dkdkx, i_dkjcx, i_dkkdx, st_noctc
+  use fracas_contactors, only: tactors_t, tactor_center, tk_disk, tk_xksid, tk_jonc
+  use fracas_contacts, only: contacts_t, contacts_reserve
+  use fracas_dkdkx, only: dkdkx_geometry
+  use fracas_dkjcx, only: dkjcx_geometry
+  use fracas_dkkdx, only: dkkdx_geometry
+  implicit none
+  private
+  public :: detection_t, detection_init, detect_rough, detect_fine
+
+  type :: detection_t
+    integer :: ncls = 0
+    integer, allocatable :: cls(:)             !< class (kind, colour) of each contactor
+    integer, allocatable :: rule_law(:, :)     !< (cd class, an class) -> law index, 0: none
+    real(wp), allocatable :: rule_alert(:, :)  !< alert distance of that rule
+    real(wp) :: max_alert = 0.0_wp
+    logical, allocatable :: small(:)           !< binned in the cell grid (ordinary disks)
+    ! rough pairs, kept between rough detections (candidate first)
+    integer :: npairs = 0
+    integer, allocatable :: pair_cd(:), pair_an(:), pair_inter(:), pair_law(:)
+    real(wp), allocatable :: pair_alert(:)
+  end type detection_t
+
+contains
+
+  !> Interaction type for a (candidate kind, antagonist kind), 0 if none.
+  pure integer function inter_of(kcd, kan)
+    integer, intent(in) :: kcd, kan
+    inter_of = 0
+    if (kcd == tk_disk .and. kan == tk_disk) inter_of = i_dkdkx
+    if (kcd == tk_disk .and. kan == tk_jonc) inter_of = i_dkjcx
+    if (kcd == tk_disk .and. kan == tk_xksid) inter_of = i_dkkdx
+  end function inter_of
+
+  !> Build the see table from the $seety rules. law_nicknames(i) names law i.
+  subroutine detection_init(det, t, rules, law_nicknames)
+    type(detection_t), intent(out) :: det
+    type(tactors_t), intent(in) :: t
+    type(see_rule_input_t), intent(in) :: rules(:)
+    character(len=5), intent(in) :: law_nicknames(:)
+    character(len=5), allocatable :: cls_kind(:), cls_color(:)
+    character(len=5) :: kname
+    integer :: k, j, r, icd, ian, ilaw
+    real(wp) :: rmed
+    real(wp), allocatable :: radii(:)
+    allocate (det%cls(t%n), cls_kind(0), cls_color(0))
+    do k = 1, t%n
+      kname = kind_name(t%kind(k))
+      det%cls(k) = 0
+      do j = 1, size(cls_kind)
+        if (cls_kind(j) == kname .and. cls_color(j) == t%color(k)) det%cls(k) = j
+      end do
+      if (det%cls(k) == 0) then
+        cls_kind = [cls_kind, kname]
+        cls_color = [cls_color, t%color(k)]
+        det%cls(k) = size(cls_kind)
+      end if
+    end do
+    det%ncls = size(cls_kind)
+    allocate (det%rule_law(det%ncls, det%ncls), det%rule_alert(det%ncls, det%ncls))
+    det%rule_law = 0
+    det%rule_alert = 0.0_wp
+    do r = 1, size(rules)
+      associate (s => rules(r))
+        ilaw = 0
+        do j = 1, size(law_nicknames)
+          if (law_nicknames(j) == s%behav) ilaw = j
+        end do
+        if (ilaw == 0) call input_error(s%src%file, s%src%line, 23, "see rule names law '"// &
+          s%behav//"' that TACT_BEHAV.DAT does not define")
+        if (s%alert < 0.0_wp) call input_error(s%src%file, s%src%line, 55, &
+          'alert distance must be >= 0')
+        if (s%cdbdy /= 'RBDY2' .or. s%anbdy /= 'RBDY2') call input_error(s%src%file, s%src%line, 2, &
+          'see rule body model must be RBDY2 (the only body model supported yet)')
+        icd = find_cls(s%cdtac, s%cdcol)
+        ian = find_cls(s%antac, s%ancol)
+        if (icd == 0 .or. ian == 0) cycle   ! no contactor of that class: the rule is unused
+        det%rule_law(icd, ian) = ilaw
+        det%rule_alert(icd, ian) = s%alert
+        det%max_alert = max(det%max_alert, s%alert)
+      end associate
+    end do
+    ! Ordinary disks go into the cell grid; much larger ones (and walls, drums) are "big".
+    allocate (det%small(t%n))
+    radii = pack(t%radius, t%kind == tk_disk)
+    rmed = 0.0_wp
+    if (size(radii) > 0) rmed = median(radii)
+    det%small = t%kind == tk_disk .and. t%radius <= 10.0_wp * rmed
+    det%npairs = 0
+    allocate (det%pair_cd(0), det%pair_an(0), det%pair_inter(0), det%pair_law(0), det%pair_alert(0))
+
+  contains
+
+    integer function find_cls(kind, color)
+      character(len=5), intent(in) :: kind, color
+      integer :: i
+      find_cls = 0
+      do i = 1, det%ncls
+        if (cls_kind(i) == kind .and. cls_color(i) == color) find_cls = i
+      end do
+    end function find_cls
+
+    function kind_name(kind) result(name)
+      integer, intent(in) :: kind
+      character(len=5) :: name
+      select case (kind)
+      case (tk_disk); name = 'DISKx'
+      case (tk_xksid); name = 'xKSID'
+      case default; name = 'JONCx'
+      end select
+    end function kind_name
+  end subroutine detection_init
+
+  real(wp) function median(x)
+    real(wp), intent(in) :: x(:)
+    real(wp), allocatable :: s(:)
+    integer :: i, j
+    real(wp) :: key
+    s = x
+    do i = 2, size(s)          ! insertion sort is fine: called once
+      key = s(i)
+      j = i - 1
+      do while (j >= 1)
+        if (s(j) <= key) exit
+        s(j + 1) = s(j)
+        j = j - 1
+      end do
+      s(j + 1) = key
+    end do
+    median = s((size(s) + 1) / 2)
+  end function median
+
+  !> Broad phase: every pair of contactors of different bodies, allowed by the
+  !> see table, whose bounding circles come within alert + margin. Ordinary
+  !> disks are binned in square cells; big contactors are tested against all.
+  !> movable(b) is false for bodies whose every dof is driven.
+  subroutine detect_rough(det, t, q, movable, margin)
+    type(detection_t), intent(inout) :: det
+    type(tactors_t), intent(in) :: t
+    real(wp), intent(in) :: q(:, :), margin
+    logical, intent(in) :: movable(:)
+    real(wp), allocatable :: c(:, :)
+    integer, allocatable :: cell_of(:), cell_start(:), items(:), fill(:), bigs(:)
+    integer :: k, j, nx, ny, ix, iy, jx, jy, cell, p, nsmall, ib
+    real(wp) :: lo(2), hi(2), size_cell, rmax
+    allocate (c(2, t%n))
+    do k = 1, t%n
+      c(:, k) = tactor_center(t, k, q(:, t%body(k)))
+    end do
+    det%npairs = 0
+    nsmall = count(det%small)
+    bigs = pack([(k, k=1, t%n)], .not. det%small)
+    if (nsmall > 0) then
+      rmax = maxval(t%radius, mask=det%small)
+      size_cell = 2.0_wp * rmax + det%max_alert + margin
+      lo = [minval(c(1, :), mask=det%small), minval(c(2, :), mask=det%small)]
+      hi = [maxval(c(1, :), mask=det%small), maxval(c(2, :), mask=det%small)]
+      ! Cap the grid at about 4 cells per disk for sparse scenes.
+      size_cell = max(size_cell, sqrt(max((hi(1) - lo(1)) * (hi(2) - lo(2)), tiny(1.0_wp)) / (4.0_wp * nsmall)))
+      nx = max(1, int((hi(1) - lo(1)) / size_cell) + 1)
+      ny = max(1, int((hi(2) - lo(2)) / size_cell) + 1)
+      allocate (cell_of(t%n), cell_start(nx * ny + 1), items(nsmall))
+      cell_start = 0
+      do k = 1, t%n
+        if (.not. det%small(k)) cycle
+        ix = min(nx - 1, int((c(1, k) - lo(1)) / size_cell))
+        iy = min(ny - 1, int((c(2, k) - lo(2)) / size_cell))
+        cell_of(k) = 1 + ix + nx * iy
+        cell_start(cell_of(k) + 1) = cell_start(cell_of(k) + 1) + 1
+      end do
+      cell_start(1) = 1
+      do k = 1, nx * ny
+        cell_start(k + 1) = cell_start(k + 1) + cell_start(k)
+      end do
+      fill = cell_start(1:nx * ny)
+      do k = 1, t%n
+        if (.not. det%small(k)) cycle
+        items(fill(cell_of(k))) = k
+        fill(cell_of(k)) = fill(cell_of(k)) + 1
+      end do
+      ! Visit cells in order (spatially sorted contacts); each pair once (j > k within a cell,
+      ! all of the forward half-stencil of neighbour cells).
+      do cell = 1, nx * ny
+        ix = mod(cell - 1, nx)
+        iy = (cell - 1) / nx
+        do p = cell_start(cell), cell_start(cell + 1) - 1
+          k = items(p)
+          do jy = iy, min(ny - 1, iy + 1)
+            do jx = max(0, ix - 1), min(nx - 1, ix + 1)
+              if (jy == iy .and. jx < ix) cycle
+              call scan_cell(k, 1 + jx + nx * jy, jx == ix .and. jy == iy, p)
+            end do
+          end do
+        end do
+      end do
+    end if
+    do ib = 1, size(bigs)
+      k = bigs(ib)
+      do j = 1, t%n
+        if (j == k) cycle
+        if (.not. det%small(j) .and. j < k) cycle    ! big-big pairs once
+        call consider(k, j)
+      end do
+    end do
+
+  contains
+
+    subroutine scan_cell(k, other, same, p)
+      integer, intent(in) :: k, other, p
+      logical, intent(in) :: same
+      integer :: i, first
+      first = cell_start(other)
+      if (same) first = p + 1
+      do i = first, cell_start(other + 1) - 1
+        call consider(k, items(i))
+      end do
+    end subroutine scan_cell
+
+    !> Keep (a, b) if the see table allows it and the bounding shapes are close.
+    subroutine consider(a, b)
+      integer, intent(in) :: a, b
+      integer :: icd, ian, inter, law
+      real(wp) :: alert, dist, reach
+      if (t%body(a) == t%body(b)) return
+      if (.not. (movable(t%body(a)) .or. movable(t%body(b)))) return
+      ! Orientation: the interaction type decides which side is the candidate;
+      ! for two disks the lower index is the candidate unless only the reverse rule exists.
+      icd = a; ian = b
+      if (inter_of(t%kind(a), t%kind(b)) == 0 .or. &
+          (t%kind(a) == t%kind(b) .and. a > b)) then
+        icd = b; ian = a
+      end if
+      inter = inter_of(t%kind(icd), t%kind(ian))
+      if (inter == 0) return
+      law = det%rule_law(det%cls(icd), det%cls(ian))
+      alert = det%rule_alert(det%cls(icd), det%cls(ian))
+      if (law == 0 .and. t%kind(icd) == t%kind(ian)) then
+        law = det%rule_law(det%cls(ian), det%cls(icd))
+        alert = det%rule_alert(det%cls(ian), det%cls(icd))
+        if (law /= 0) then
+          p_swap: block
+            integer :: tmp
+            tmp = icd; icd = ian; ian = tmp
+          end block p_swap
+        end if
+      end if
+      if (law == 0) return
+      dist = norm2(c(:, icd) - c(:, ian))
+      reach = alert + margin
+      if (t%kind(ian) == tk_xksid) then
+        if (dist + t%bound(icd) < t%radius(ian) - reach) return
+      else
+        if (dist > t%bound(icd) + t%bound(ian) + reach) return
+      end if
+      call push_pair(icd, ian, inter, law, alert)
+    end subroutine consider
+
+    subroutine push_pair(icd, ian, inter, law, alert)
+      integer, intent(in) :: icd, ian, inter, law
+      real(wp), intent(in) :: alert
+      integer :: np
+      np = det%npairs + 1
+      if (np > size(det%pair_cd)) then
+        det%pair_cd = grow_int(det%pair_cd)
+        det%pair_an = grow_int(det%pair_an)
+        det%pair_inter = grow_int(det%pair_inter)
+        det%pair_law = grow_int(det%pair_law)
+        det%pair_alert = grow_real(det%pair_alert)
+      end if
+      det%pair_cd(np) = icd
+      det%pair_an(np) = ian
+      det%pair_inter(np) = inter
+      det%pair_law(np) = law
+      det%pair_alert(np) = alert
+      det%npairs = np
+    end subroutine push_pair
+  end subroutine detect_rough
+
+  pure function grow_int(a) result(b)
+    integer, intent(in) :: a(:)
+    integer, allocatable :: b(:)
+    allocate (b(max(64, 2 * size(a))))
+    b(1:size(a)) = a
+  end function grow_int
+
+  pure function grow_real(a) result(b)
+    real(wp), intent(in) :: a(:)
+    real(wp), allocatable :: b(:)
+    allocate (b(max(64, 2 * size(a))))
+    b(1:size(a)) = a
+  end function grow_real
+
+
+  !> Fine detection of the rough pairs at configuration q: every pair whose gap
+  !> is within its alert distance becomes a contact with its local frame, gap,
+  !> contact point and lever arms.
+  subroutine detect_fine(det, t, q, c)
+    type(detection_t), intent(in) :: det
+    type(tactors_t), intent(in) :: t
+    real(wp), intent(in) :: q(:, :)
+    type(contacts_t), intent(inout) :: c
+    integer :: p, icd, ian, k, bcd, ban
+    real(wp) :: gap, normal(2), point(2), ccd(2), can(2), tang(2), rcd(2), ran(2)
+    call contacts_reserve(c, det%npairs)
+    c%n = 0
+    do p = 1, det%npairs
+      icd = det%pair_cd(p)
+      ian = det%pair_an(p)
+      bcd = t%body(icd)
+      ban = t%body(ian)
+      ccd = tactor_center(t, icd, q(:, bcd))
+      can = tactor_center(t, ian, q(:, ban))
+      select case (det%pair_inter(p))
+      case (i_dkdkx)
+        call dkdkx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
+      case (i_dkjcx)
+        call dkjcx_geometry(ccd, t%radius(icd), can, q(3, ban), t%ax1(ian), t%ax2(ian), gap, normal, point)
+      case (i_dkkdx)
+        call dkkdx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
+      case default
+        cycle
+      end select
+      if (gap > det%pair_alert(p)) cycle
+      c%n = c%n + 1
+      k = c%n
+      c%inter(k) = det%pair_inter(p)
+      c%cd(k) = icd
+      c%an(k) = ian
+      c%cdb(k) = bcd
+      c%anb(k) = ban
+      c%law(k) = det%pair_law(p)
+      c%normal(:, k) = normal
+      c%point(:, k) = point
+      c%gap(k) = gap
+      tang = [normal(2), -normal(1)]
+      rcd = point - q(1:2, bcd)
+      ran = point - q(1:2, ban)
+      c%lever(1, k) = cross(rcd, tang)
+      c%lever(2, k) = cross(rcd, normal)
+      c%lever(3, k) = cross(ran, tang)
+      c%lever(4, k) = cross(ran, normal)
+      c%status(k) = st_noctc
+      c%status_begin(k) = st_noctc
+      c%r(:, k) = 0.0_wp
+    end do
+  end subroutine detect_fine
+
+  pure real(wp) function cross(a, b)
+    real(wp), intent(in) :: a(2), b(2)
+    cross = a(1) * b(2) - a(2) * b(1)
+  end function cross
+end module fracas_detection

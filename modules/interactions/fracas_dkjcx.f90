@@ -1,0 +1,29 @@
+!> DKJCx: disk (candidate) against a JONCx wall (antagonist): a segment of half
+!> length ax1 along the body's x axis, thickened by ax2 (rounded ends).
+module fracas_dkjcx
+  use fracas_kinds, only: wp
+  implicit none
+  private
+  public :: dkjcx_geometry
+
+contains
+
+  !> c_jc and angle place the wall; the normal points from the wall to the disk.
+  pure subroutine dkjcx_geometry(c_cd, r_cd, c_jc, angle, ax1, ax2, gap, normal, point)
+    real(wp), intent(in) :: c_cd(2), r_cd, c_jc(2), angle, ax1, ax2
+    real(wp), intent(out) :: gap, normal(2), point(2)
+    real(wp) :: axis(2), s, closest(2), d(2), dist
+    axis = [cos(angle), sin(angle)]
+    s = max(-ax1, min(ax1, dot_product(c_cd - c_jc, axis)))
+    closest = c_jc + s * axis
+    d = c_cd - closest
+    dist = norm2(d)
+    if (dist > 0.0_wp) then
+      normal = d / dist
+    else
+      normal = [-axis(2), axis(1)]
+    end if
+    gap = dist - r_cd - ax2
+    point = closest + (ax2 + 0.5_wp * gap) * normal
+  end subroutine dkjcx_geometry
+end module fracas_dkjcx
