@@ -1,0 +1,254 @@
+!> Nonlinear Gauss–Seidel on the contact reactions, "exchange local–global"
+!> mode: after each contact update the two bodies' velocities are updated, so
+!> each contact sees its neighbours' latest reactions. Convergence is measured
+!> with LMGC90's normalised norms (Quad, Maxm, QM/16), computed inside the last
+!> sweep of each block, and after convergence with the FCLib natural map.
+module fracas_nlgs
+  use fracas_kinds, only: wp
+  use fracas_ids, only: st_noctc, st_noact
+  use fracas_random, only: rng_t, rng_seed, rng_permute
+  use fracas_rbdy2, only: rbdy2_t
+  use fracas_contacts, only: contacts_t
+  use fracas_contact_laws, only: law_t, law_shift, law_friction
+  use fracas_local_solver, only: coulomb_2d, natural_map_2d
+  use fracas_errors, only: fatal
+  implicit none
+  private
+  public :: nlgs_settings_t, nlgs_report_t, nlgs_t, nlgs_init, nlgs_prepare, nlgs_solve, &
+            contact_velocity
+
+  type :: nlgs_settings_t
+    character(len=5) :: check = 'Quad '
+    real(wp) :: tol = 1.0e-4_wp
+    real(wp) :: relax = 1.0_wp
+    integer :: sweeps_per_check = 50
+    integer :: max_checks = 400
+    character(len=8) :: order = 'stored'
+    integer :: seed = 1
+  end type nlgs_settings_t
+
+  type :: nlgs_report_t
+    integer :: sweeps = 0
+    logical :: converged = .true.
+    real(wp) :: quad_dv = 0.0_wp, maxm_dv = 0.0_wp, quad_dvr = 0.0_wp, maxm_dvr = 0.0_wp
+    real(wp) :: mean_dvor = 0.0_wp
+    real(wp) :: residual = 0.0_wp        !< natural map ||F|| / ||q||
+    real(wp) :: residual_onepq = 0.0_wp  !< ||F|| / (1 + ||q||)
+    integer :: nactive = 0               !< contacts with a non-zero reaction
+  end type nlgs_report_t
+
+  !> Solver state kept between steps (random stream, work arrays).
+  type :: nlgs_t
+    type(nlgs_settings_t) :: s
+    type(rng_t) :: rng
+    integer, allocatable :: order(:)
+    real(wp), allocatable :: qfree(:, :)   !< (2,n) free local velocity incl. law shift
+  end type nlgs_t
+
+contains
+
+  subroutine nlgs_init(solver, settings)
+    type(nlgs_t), intent(out) :: solver
+    type(nlgs_settings_t), intent(in) :: settings
+    solver%s = settings
+    call rng_seed(solver%rng, settings%seed)
+  end subroutine nlgs_init
+
+  !> Relative velocity (t, n) at contact k for body velocities v.
+  pure function contact_velocity(c, k, v) result(u)
+    type(contacts_t), intent(in) :: c
+    integer, intent(in) :: k
+    real(wp), intent(in) :: v(:, :)
+    real(wp) :: u(2), dv(2)
+    integer :: a, b
+    a = c%cdb(k); b = c%anb(k)
+    dv = v(1:2, a) - v(1:2, b)
+    u(1) = dv(1) * c%normal(2, k) - dv(2) * c%normal(1, k) + v(3, a) * c%lever(1, k) - v(3, b) * c%lever(3, k)
+    u(2) = dv(1) * c%normal(1, k) + dv(2) * c%normal(2, k) + v(3, a) * c%lever(2, k) - v(3, b) * c%lever(4, k)
+  end function contact_velocity
+
+  !> Per-contact data of the step: Delassus blocks from the inverse masses and
+  !> lever arms, velocities at the beginning of the step, law shifts, friction.
+  subroutine nlgs_prepare(c, b, laws, h)
+    type(contacts_t), intent(inout) :: c
+    type(rbdy2_t), intent(in) :: b
+    type(law_t), intent(in) :: laws(:)
+    real(wp), intent(in) :: h
+    integer :: k, a, o
+    real(wp) :: ht(3), hn(3), gt(3), gn(3)
+    logical :: active
+    do k = 1, c%n
+      a = c%cdb(k); o = c%anb(k)
+      ht = [c%normal(2, k), -c%normal(1, k), c%lever(1, k)]
+      hn = [c%normal(1, k), c%normal(2, k), c%lever(2, k)]
+      gt = [c%normal(2, k), -c%normal(1, k), c%lever(3, k)]
+      gn = [c%normal(1, k), c%normal(2, k), c%lever(4, k)]
+      c%w(1, k) = sum(b%inv_mass(:, a) * ht * ht) + sum(b%inv_mass(:, o) * gt * gt)
+      c%w(2, k) = sum(b%inv_mass(:, a) * ht * hn) + sum(b%inv_mass(:, o) * gt * gn)
+      c%w(3, k) = c%w(2, k)
+      c%w(4, k) = sum(b%inv_mass(:, a) * hn * hn) + sum(b%inv_mass(:, o) * gn * gn)
+      ! A nearly rigid tangential direction would make the stick test ill-posed.
+      c%w(1, k) = max(c%w(1, k), 1.0e-6_wp * c%w(4, k))
+      c%u_begin(:, k) = contact_velocity(c, k, b%vbegin)
+      call law_shift(laws(c%law(k)), c%gap(k), h, c%u_begin(:, k), c%shift(:, k), active)
+      c%active(k) = active .and. c%w(4, k) > 1.0e-18_wp
+      c%mu(k) = law_friction(laws(c%law(k)), c%status_begin(k))
+      if (.not. c%active(k)) then
+        c%r(:, k) = 0.0_wp
+        c%status(k) = st_noact
+      end if
+    end do
+  end subroutine nlgs_prepare
+
+  !> Solve the step's contact problem. On entry b%v = vfree and c%r holds the
+  !> warm start; on exit b%v = vfree + M^-1 H^T r and c%u the final local velocities.
+  subroutine nlgs_solve(solver, c, b, report)
+    type(nlgs_t), intent(inout) :: solver
+    type(contacts_t), intent(inout) :: c
+    type(rbdy2_t), intent(inout) :: b
+    type(nlgs_report_t), intent(out) :: report
+    integer :: k, iblock, isweep, n
+    real(wp) :: sums(7), maxes(2), fsum, qsum
+    n = c%n
+    report%sweeps = 0
+    if (allocated(solver%order)) then
+      if (size(solver%order) < n) deallocate (solver%order, solver%qfree)
+    end if
+    if (.not. allocated(solver%order)) allocate (solver%order(max(n, 16)), solver%qfree(2, max(n, 16)))
+    do k = 1, n
+      solver%qfree(:, k) = contact_velocity(c, k, b%v) + c%shift(:, k)
+      if (c%active(k)) call inject(k, c%r(1, k), c%r(2, k))
+    end do
+    select case (solver%s%order)
+    case ('reversed')
+      solver%order(1:n) = [(n + 1 - k, k=1, n)]
+    case default
+      solver%order(1:n) = [(k, k=1, n)]
+    end select
+    report%converged = n == 0
+    if (n > 0) then
+      blocks: do iblock = 1, solver%s%max_checks
+        if (solver%s%order == 'shuffled') call rng_permute(solver%rng, solver%order(1:n))
+        do isweep = 1, solver%s%sweeps_per_check
+          call sweep(isweep == solver%s%sweeps_per_check)
+          report%sweeps = report%sweeps + 1
+        end do
+        call norms(report)
+        if (report%converged) exit blocks
+      end do blocks
+    end if
+    ! Final local velocities, statuses and the natural-map residual.
+    fsum = 0.0_wp; qsum = 0.0_wp
+    report%nactive = 0
+    do k = 1, n
+      c%u(:, k) = contact_velocity(c, k, b%v)
+      if (.not. c%active(k)) cycle
+      if (c%r(1, k) == 0.0_wp .and. c%r(2, k) == 0.0_wp) then
+        c%status(k) = st_noctc
+      else
+        report%nactive = report%nactive + 1
+      end if
+      fsum = fsum + natural_map_2d(c%u(1, k) + c%shift(1, k), c%u(2, k) + c%shift(2, k), &
+                                   c%r(1, k), c%r(2, k), c%mu(k))
+      qsum = qsum + sum(solver%qfree(:, k)**2)
+    end do
+    report%residual = 0.0_wp
+    if (qsum > 0.0_wp) report%residual = sqrt(fsum / qsum)
+    report%residual_onepq = sqrt(fsum) / (1.0_wp + sqrt(qsum))
+
+  contains
+
+    !> Add impulse (dt, dn) of contact k to both bodies' velocities.
+    subroutine inject(k, dt, dn)
+      integer, intent(in) :: k
+      real(wp), intent(in) :: dt, dn
+      integer :: a, o
+      real(wp) :: p(2)
+      a = c%cdb(k); o = c%anb(k)
+      p(1) = dt * c%normal(2, k) + dn * c%normal(1, k)
+      p(2) = -dt * c%normal(1, k) + dn * c%normal(2, k)
+      b%v(1:2, a) = b%v(1:2, a) + b%inv_mass(1:2, a) * p
+      b%v(3, a) = b%v(3, a) + b%inv_mass(3, a) * (dt * c%lever(1, k) + dn * c%lever(2, k))
+      b%v(1:2, o) = b%v(1:2, o) - b%inv_mass(1:2, o) * p
+      b%v(3, o) = b%v(3, o) - b%inv_mass(3, o) * (dt * c%lever(3, k) + dn * c%lever(4, k))
+    end subroutine inject
+
+    !> One Gauss–Seidel sweep; with check, accumulate LMGC90's norm sums.
+    subroutine sweep(check)
+      logical, intent(in) :: check
+      integer :: ii, k, status
+      real(wp) :: u(2), uft, ufn, rt, rn, rt0, rn0, dut, dun, du2, rbt, rbn, wr0(2), wr1(2), relax
+      relax = solver%s%relax
+      if (check) then
+        sums = 0.0_wp
+        maxes = 0.0_wp
+      end if
+      do ii = 1, n
+        k = solver%order(ii)
+        if (.not. c%active(k)) cycle
+        u = contact_velocity(c, k, b%v)
+        rt0 = c%r(1, k); rn0 = c%r(2, k)
+        uft = u(1) - (c%w(1, k) * rt0 + c%w(2, k) * rn0) + c%shift(1, k)
+        ufn = u(2) - (c%w(3, k) * rt0 + c%w(4, k) * rn0) + c%shift(2, k)
+        call coulomb_2d(uft, ufn, c%w(1, k), c%w(2, k), c%w(3, k), c%w(4, k), c%mu(k), rt, rn, status)
+        c%status(k) = status
+        if (check) then
+          ! dU = W (r_old - r_new); rbar = mean reaction; WR for the normalisation.
+          dut = c%w(1, k) * (rt0 - rt) + c%w(2, k) * (rn0 - rn)
+          dun = c%w(3, k) * (rt0 - rt) + c%w(4, k) * (rn0 - rn)
+          du2 = dut**2 + dun**2
+          rbt = 0.5_wp * (rt0 + rt); rbn = 0.5_wp * (rn0 + rn)
+          wr0 = [c%w(1, k) * rt0 + c%w(2, k) * rn0, c%w(3, k) * rt0 + c%w(4, k) * rn0]
+          wr1 = [c%w(1, k) * rt + c%w(2, k) * rn, c%w(3, k) * rt + c%w(4, k) * rn]
+          if (rbt /= 0.0_wp .or. rbn /= 0.0_wp) then
+            sums(1) = sums(1) + du2
+            sums(2) = sums(2) + du2 * (rbt**2 + rbn**2)
+            sums(3) = sums(3) + rbt * dut + rbn * dun
+            sums(4) = sums(4) + 0.5_wp * (dot_product(wr0, [rt0, rn0]) + dot_product(wr1, [rt, rn]))
+            sums(5) = sums(5) + 0.5_wp * (sum(wr0**2) + sum(wr1**2))
+            sums(6) = sums(6) + 1.0_wp
+            maxes(1) = max(maxes(1), du2)
+            maxes(2) = max(maxes(2), du2 * (rbt**2 + rbn**2))
+          end if
+        end if
+        if (relax /= 1.0_wp) then
+          rt = relax * rt + (1.0_wp - relax) * rt0
+          rn = relax * rn + (1.0_wp - relax) * rn0
+        end if
+        c%r(1, k) = rt; c%r(2, k) = rn
+        if (rt /= rt0 .or. rn /= rn0) call inject(k, rt - rt0, rn - rn0)
+      end do
+    end subroutine sweep
+
+    !> LMGC90's normalised errors from the sums of the last check sweep.
+    subroutine norms(rep)
+      type(nlgs_report_t), intent(inout) :: rep
+      real(wp) :: nact, quad_wr, mean_wrr, tol
+      tol = solver%s%tol
+      nact = sums(6)
+      if (nact < 1.0_wp .or. sums(5) <= 0.0_wp .or. sums(4) <= 0.0_wp) then
+        rep%quad_dv = 0.0_wp; rep%maxm_dv = 0.0_wp; rep%quad_dvr = 0.0_wp
+        rep%maxm_dvr = 0.0_wp; rep%mean_dvor = 0.0_wp
+        rep%converged = .true.
+        return
+      end if
+      quad_wr = sqrt(sums(5) / nact)
+      mean_wrr = sums(4) / nact
+      rep%quad_dv = sqrt(sums(1) / nact) / (quad_wr * tol)
+      rep%maxm_dv = sqrt(maxes(1)) / (quad_wr * tol)
+      rep%quad_dvr = sqrt(sums(2) / nact) / (mean_wrr * tol)
+      rep%maxm_dvr = sqrt(maxes(2)) / (mean_wrr * tol)
+      rep%mean_dvor = sums(3) / (sums(4) * tol)
+      if (rep%quad_dv /= rep%quad_dv) call fatal('NLGS diverged (NaN in the reactions)')
+      select case (solver%s%check)
+      case ('Maxm ')
+        rep%converged = abs(rep%mean_dvor) < 1.0_wp .and. rep%maxm_dv < 1.0_wp .and. rep%maxm_dvr < 1.0_wp
+      case ('QM/16')
+        rep%converged = abs(rep%mean_dvor) < 1.0_wp .and. rep%quad_dv < 1.0_wp .and. &
+                        rep%quad_dvr < 1.0_wp .and. rep%maxm_dv < 16.666_wp .and. rep%maxm_dvr < 16.666_wp
+      case default
+        rep%converged = abs(rep%mean_dvor) < 1.0_wp .and. rep%quad_dv < 1.0_wp .and. rep%quad_dvr < 1.0_wp
+      end select
+    end subroutine norms
+  end subroutine nlgs_solve
+end module fracas_nlgs

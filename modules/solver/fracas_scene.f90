@@ -1,0 +1,264 @@
+!> A scene ready to run: bodies, contactors, laws, detection, contacts and
+!> solver built from the deck, and one Moreau–Jean step:
+!> free velocity -> detection at the theta configuration -> warm start ->
+!> NLGS -> velocity and position update -> history for the next step.
+module fracas_scene
+  use fracas_kinds, only: wp
+  use fracas_deck, only: deck_t
+  use fracas_errors, only: input_error
+  use fracas_ids, only: inter_id, status_id, st_noact
+  use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
+                          rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy, drive_value
+  use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia
+  use fracas_contact_laws, only: law_t, law_from_input
+  use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
+  use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts
+  use fracas_nlgs, only: nlgs_t, nlgs_settings_t, nlgs_report_t, nlgs_init, nlgs_prepare, nlgs_solve
+  implicit none
+  private
+  public :: scene_t, step_report_t, scene_build, scene_step, scene_body_impulses
+
+  real(wp), parameter :: pi = acos(-1.0_wp)
+
+  !> What one step did, for progress lines and the HDF5 series.
+  type :: step_report_t
+    type(nlgs_report_t) :: nlgs
+    integer :: contacts = 0
+    real(wp) :: kinetic = 0.0_wp
+    real(wp) :: mean_overlap = 0.0_wp, max_overlap = 0.0_wp
+  end type step_report_t
+
+  type :: scene_t
+    real(wp) :: h = 0.0_wp, theta = 0.5_wp, time = 0.0_wp
+    integer :: step = 0, steps_done = 0, detection_frequency = 1
+    type(rbdy2_t) :: bodies
+    type(tactors_t) :: tactors
+    type(law_t), allocatable :: laws(:)
+    type(detection_t) :: det
+    type(contacts_t) :: contacts
+    type(history_t) :: hist
+    type(nlgs_t) :: solver
+    integer, allocatable :: first_tactor(:)  !< first contactor of each body
+    logical, allocatable :: movable(:)
+    real(wp), allocatable :: q(:, :)         !< detection configuration of the step
+    ! Energy audit, accumulated over the run (J per unit thickness).
+    real(wp) :: kinetic0 = 0.0_wp, work_gravity = 0.0_wp, work_forces = 0.0_wp
+    real(wp) :: work_supports = 0.0_wp, dissipated = 0.0_wp
+  end type scene_t
+
+contains
+
+  !> Build the runtime scene from the deck (the deck is not needed afterwards).
+  subroutine scene_build(deck, sc)
+    type(deck_t), intent(in) :: deck
+    type(scene_t), intent(out) :: sc
+    integer :: nb, ib, im, k, j, pos
+    integer, allocatable :: number(:), cd(:), an(:), inter(:), status(:)
+    real(wp), allocatable :: ref(:, :), mass(:), inertia(:), avrd(:), force(:, :)
+    real(wp) :: density, area, polar, gyrd
+    character(len=5), allocatable :: nick(:)
+    type(nlgs_settings_t) :: ns
+
+    sc%h = deck%run%time_step
+    sc%theta = deck%run%theta
+    sc%detection_frequency = max(1, deck%run%detection_frequency)
+    nb = size(deck%bodies)
+    allocate (number(nb), ref(3, nb), mass(nb), inertia(nb), avrd(nb))
+    do ib = 1, nb
+      associate (bd => deck%bodies(ib))
+        density = -1.0_wp
+        do im = 1, size(deck%materials)
+          if (deck%materials(im)%nickname == bd%behav) density = deck%materials(im)%density
+        end do
+        if (density < 0.0_wp) call input_error(bd%src%file, bd%src%line, 23, "material '"//bd%behav// &
+          "' is not defined in BULK_BEHAV.DAT")
+        call body_area_inertia(bd, area, polar)
+        avrd(ib) = bd%avrd
+        if (avrd(ib) <= 0.0_wp) avrd(ib) = sqrt(area / pi)
+        gyrd = bd%gyrd
+        if (gyrd <= 0.0_wp .and. area > 0.0_wp) gyrd = sqrt(polar / area)
+        if (avrd(ib) <= 0.0_wp .or. gyrd <= 0.0_wp) call input_error(bd%src%file, bd%src%line, 0, &
+          'body has no size: give avrd and gyrd or at least one contactor')
+        number(ib) = ib
+        ref(:, ib) = bd%coor
+        mass(ib) = density * pi * avrd(ib)**2
+        inertia(ib) = mass(ib) * gyrd**2
+      end associate
+    end do
+    call rbdy2_init(sc%bodies, number, ref, mass, inertia, avrd, deck%gravity(1:2))
+    do k = 1, size(deck%driven)
+      call rbdy2_add_drive(sc%bodies, deck%driven(k))
+    end do
+    do k = 1, size(deck%dof_ini)
+      associate (d => deck%dof_ini(k))
+        if (d%body < 1 .or. d%body > nb) call input_error(d%src%file, d%src%line, 9, &
+          'body number out of range')
+        sc%bodies%xbegin(:, d%body) = d%x
+        sc%bodies%x(:, d%body) = d%x
+        sc%bodies%vbegin(:, d%body) = d%v
+        sc%bodies%v(:, d%body) = d%v
+      end associate
+    end do
+    sc%time = deck%dof_time
+    sc%step = deck%dof_step
+    sc%movable = .not. sc%bodies%clamped
+    sc%kinetic0 = rbdy2_kinetic_energy(sc%bodies)
+
+    allocate (sc%laws(size(deck%laws)), nick(size(deck%laws)))
+    do k = 1, size(deck%laws)
+      sc%laws(k) = law_from_input(deck%laws(k))
+      nick(k) = deck%laws(k)%nickname
+    end do
+    call tactors_build(deck%bodies, sc%tactors)
+    allocate (sc%first_tactor(nb + 1))
+    sc%first_tactor = sc%tactors%n + 1
+    do k = sc%tactors%n, 1, -1
+      sc%first_tactor(sc%tactors%body(k)) = k
+    end do
+    do ib = nb, 1, -1
+      sc%first_tactor(ib) = min(sc%first_tactor(ib), sc%first_tactor(ib + 1))
+    end do
+    call detection_init(sc%det, sc%tactors, deck%see_rules, nick)
+    allocate (sc%q(3, nb))
+
+    ! History from Vloc_Rloc.INI: contactors named by (body, rank in body).
+    allocate (cd(0), an(0), inter(0), status(0), force(2, 0))
+    do k = 1, size(deck%vloc_ini)
+      associate (r => deck%vloc_ini(k))
+        j = inter_id(r%inter)
+        if (j == 0) cycle   ! a type this build does not treat: nothing to warm start
+        cd = [cd, tactor_of(r%icdbdy, r%icdtac)]
+        an = [an, tactor_of(r%ianbdy, r%iantac)]
+        inter = [inter, j]
+        pos = status_id(r%status)
+        if (pos == 0) call input_error(r%src%file, r%src%line, 71, "unknown contact status '"//r%status//"'")
+        status = [status, pos]
+        force = reshape([force, [r%rlt, r%rln]], [2, size(cd)])
+      end associate
+    end do
+    call history_build(sc%hist, sc%tactors%n, cd, an, inter, status, force)
+
+    ns%check = deck%run%nlgs_check
+    ns%tol = deck%run%nlgs_tolerance
+    ns%relax = deck%run%nlgs_relaxation
+    ns%sweeps_per_check = deck%run%nlgs_sweeps_per_check
+    ns%max_checks = deck%run%nlgs_max_checks
+    ns%order = deck%run%nlgs_order
+    ns%seed = deck%run%nlgs_seed
+    call nlgs_init(sc%solver, ns)
+
+  contains
+
+    integer function tactor_of(ibody, rank)
+      integer, intent(in) :: ibody, rank
+      associate (r => deck%vloc_ini(k))
+        if (ibody < 1 .or. ibody > nb) call input_error(r%src%file, r%src%line, 9, &
+          'body number out of range in Vloc_Rloc.INI')
+        tactor_of = sc%first_tactor(ibody) + rank - 1
+        if (rank < 1 .or. tactor_of >= sc%first_tactor(ibody + 1)) call input_error(r%src%file, &
+          r%src%line, 23, 'contactor number out of range in Vloc_Rloc.INI')
+      end associate
+    end function tactor_of
+  end subroutine scene_build
+
+  !> Advance the scene by one time step.
+  subroutine scene_step(sc, rep)
+    type(scene_t), intent(inout) :: sc
+    type(step_report_t), intent(out) :: rep
+    integer :: k, pos, nover
+    real(wp) :: margin, vmax, gap_end, dx(3)
+    associate (b => sc%bodies, c => sc%contacts)
+      call rbdy2_begin_step(b, sc%time, sc%h, sc%theta)
+      call rbdy2_detection_coor(b, sc%h, sc%theta, sc%q)
+      if (mod(sc%steps_done, sc%detection_frequency) == 0) then
+        ! Between rough detections bodies move at most about vmax h per step.
+        margin = 0.0_wp
+        if (sc%detection_frequency > 1) then
+          vmax = 0.0_wp
+          do k = 1, b%n
+            vmax = max(vmax, norm2(b%vbegin(1:2, k)) + abs(b%vbegin(3, k)) * b%avrd(k))
+          end do
+          margin = 2.0_wp * vmax * sc%h * sc%detection_frequency
+        end if
+        call detect_rough(sc%det, sc%tactors, sc%q, sc%movable, margin)
+      end if
+      call detect_fine(sc%det, sc%tactors, sc%q, c)
+      do k = 1, c%n
+        pos = history_find(sc%hist, c%inter(k), c%cd(k), c%an(k))
+        if (pos > 0) then
+          c%r(:, k) = sc%h * sc%hist%force(:, pos)
+          c%status_begin(k) = sc%hist%status(pos)
+        end if
+      end do
+      call nlgs_prepare(c, b, sc%laws, sc%h)
+      call nlgs_solve(sc%solver, c, b, rep%nlgs)
+
+      ! Energy audit of the step (before the begin state is overwritten).
+      do k = 1, b%n
+        dx = sc%h * ((1.0_wp - sc%theta) * b%vbegin(:, k) + sc%theta * b%v(:, k))
+        if (.not. b%driven(1, k)) sc%work_gravity = sc%work_gravity + b%mass(1, k) * b%gravity(1) * dx(1)
+        if (.not. b%driven(2, k)) sc%work_gravity = sc%work_gravity + b%mass(2, k) * b%gravity(2) * dx(2)
+      end do
+      do k = 1, size(b%drives)
+        associate (d => b%drives(k))
+          if (d%is_velocity) cycle
+          dx = sc%h * ((1.0_wp - sc%theta) * b%vbegin(:, d%body) + sc%theta * b%v(:, d%body))
+          sc%work_forces = sc%work_forces + dx(d%dof) * ((1.0_wp - sc%theta) * drive_value(d, sc%time) + &
+                                                         sc%theta * drive_value(d, sc%time + sc%h))
+        end associate
+      end do
+      sc%work_supports = sc%work_supports + support_work(sc)
+      nover = 0
+      do k = 1, c%n
+        if (c%status(k) == st_noact) cycle
+        sc%dissipated = sc%dissipated - 0.5_wp * sum(c%r(:, k) * (c%u(:, k) + c%u_begin(:, k)))
+        gap_end = c%gap(k) + sc%h * c%u(2, k)
+        if (gap_end < 0.0_wp) then
+          rep%mean_overlap = rep%mean_overlap - gap_end
+          rep%max_overlap = max(rep%max_overlap, -gap_end)
+          nover = nover + 1
+        end if
+      end do
+      if (nover > 0) rep%mean_overlap = rep%mean_overlap / nover
+
+      call rbdy2_end_step(b, sc%h, sc%theta)
+      call history_from_contacts(sc%hist, c, sc%tactors%n, sc%h)
+      sc%time = sc%time + sc%h
+      sc%step = sc%step + 1
+      sc%steps_done = sc%steps_done + 1
+      rep%contacts = c%n
+      rep%kinetic = rbdy2_kinetic_energy(b)
+    end associate
+  end subroutine scene_step
+
+  !> Work done on the free bodies by velocity-driven dofs through the contacts
+  !> during the step: minus the contact impulse on each driven dof times its mean velocity.
+  real(wp) function support_work(sc) result(w)
+    type(scene_t), intent(in) :: sc
+    real(wp), allocatable :: imp(:, :)
+    call scene_body_impulses(sc, imp)
+    w = -0.5_wp * sum(imp * (sc%bodies%v + sc%bodies%vbegin), mask=sc%bodies%driven)
+  end function support_work
+
+  !> Total contact impulse on every body (3,nb) from the current reactions.
+  subroutine scene_body_impulses(sc, imp)
+    type(scene_t), intent(in) :: sc
+    real(wp), allocatable, intent(out) :: imp(:, :)
+    integer :: k, a, o
+    real(wp) :: p(2), rt, rn
+    allocate (imp(3, sc%bodies%n))
+    imp = 0.0_wp
+    associate (c => sc%contacts)
+      do k = 1, c%n
+        a = c%cdb(k); o = c%anb(k)
+        rt = c%r(1, k); rn = c%r(2, k)
+        p(1) = rt * c%normal(2, k) + rn * c%normal(1, k)
+        p(2) = -rt * c%normal(1, k) + rn * c%normal(2, k)
+        imp(1:2, a) = imp(1:2, a) + p
+        imp(3, a) = imp(3, a) + rt * c%lever(1, k) + rn * c%lever(2, k)
+        imp(1:2, o) = imp(1:2, o) - p
+        imp(3, o) = imp(3, o) - (rt * c%lever(3, k) + rn * c%lever(4, k))
+      end do
+    end associate
+  end subroutine scene_body_impulses
+end module fracas_scene
