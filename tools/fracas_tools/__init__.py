@@ -1,0 +1,20 @@
+"""fracas_tools: pre- and post-processing for Fracas (2D NSCD, LMGC90-compatible decks).
+
+    fracas_tools.pre         Case/Scene: build a DATBOX deck and COMMAND.DAT
+    fracas_tools.datbox      read DATBOX files back into Case objects
+    fracas_tools.generators  seeded generators: disk deposits, polygons, walls, masonry, arches
+    fracas_tools.post        read OUTBOX/fracas.h5, micro-mechanics, plots, report
+    fracas_tools.synthetic   a synthetic fracas.h5 with the documented layout (tests, demos)
+
+Run ``python3 -m fracas_tools --help`` for the command line.
+"""
+
+from .fortran_io import DatboxError
+from .pre import (Body, Case, ContactLaw, Disk, DrivenDof, Jonc, Material, Polygon, RunControl,
+                  Scene, SeeRule, Xksid)
+from .datbox import read_case
+
+__version__ = "0.1.0"
+
+__all__ = ["Case", "Scene", "Body", "Disk", "Xksid", "Jonc", "Polygon", "Material", "ContactLaw",
+           "SeeRule", "DrivenDof", "RunControl", "DatboxError", "read_case", "__version__"]

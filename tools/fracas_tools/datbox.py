@@ -1,0 +1,502 @@
+"""Readers for LMGC90 DATBOX files (and our COMMAND.DAT) into fracas_tools.pre objects.
+
+Fixed columns are read as LMGC90 reads them (see doc/tools.md). Lines whose first
+column is '!' or '#' and blank lines are skipped. Errors raise
+:class:`~fracas_tools.fortran_io.DatboxError` with file:line:column.
+
+    case = read_case("my_case")          # a Case, as pre.Case.write wrote it
+    case.write("copy_of_my_case")        # byte-identical DATBOX files
+"""
+
+from pathlib import Path
+
+import numpy as np
+
+from .fortran_io import DatboxError, field, parse_int, parse_real
+from .pre import (LAW_LAYOUT, Body, Case, ContactLaw, DrivenDof, Disk, Jonc, Material, Polygon,
+                  RunControl, SeeRule, Xksid, polygon_area)
+
+__all__ = ["read_bodies", "read_bulk_behav", "read_tact_behav", "read_drv_dof", "read_dof",
+           "read_dof_ini", "read_command", "read_evolution", "read_case", "find_datbox"]
+
+
+def _data_lines(path):
+    """(line number, text) of the lines LMGC90 reads: not blank, not a comment."""
+    out = []
+    with open(path, "r", encoding="latin-1") as f:
+        for i, raw in enumerate(f, start=1):
+            t = raw.rstrip("\n").rstrip("\r")
+            if not t.strip() or t[0] in "!#":
+                continue
+            out.append((i, t))
+    return out
+
+
+class _Cursor:
+    def __init__(self, path):
+        self.path = str(path)
+        self.lines = _data_lines(path)
+        self.i = 0
+
+    def more(self):
+        return self.i < len(self.lines)
+
+    def peek(self):
+        return self.lines[self.i] if self.i < len(self.lines) else (None, None)
+
+    def next(self, what):
+        if self.i >= len(self.lines):
+            last = self.lines[-1][0] if self.lines else 0
+            raise DatboxError(self.path, last + 1, 1, f"unexpected end of file: expected {what}")
+        r = self.lines[self.i]
+        self.i += 1
+        return r
+
+    def err(self, ln, col, msg):
+        return DatboxError(self.path, ln, col, msg)
+
+
+def _keyword(t):
+    return t[:6] if t.startswith("$") else None
+
+
+# --------------------------------------------------------------------------------------
+# BODIES.DAT
+# --------------------------------------------------------------------------------------
+
+def _read_tactor(cur, ln, t):
+    kind = field(t, 2, 6)
+    color = field(t, 23, 27)
+    p = cur.path
+    try:
+        if kind in ("DISKx", "xKSID"):
+            r = parse_real(t, 35, 48, p, ln, "byrd (radius)", blank_ok=False)
+            return Disk(r, color) if kind == "DISKx" else Xksid(r, color)
+        if kind == "JONCx":
+            a1 = parse_real(t, 35, 48, p, ln, "axe1 (half length)", blank_ok=False)
+            a2 = parse_real(t, 56, 69, p, ln, "axe2 (half thickness)", blank_ok=False)
+            return Jonc(a1, a2, color)
+        if kind == "POLYG":
+            nv = parse_int(t, 40, 46, p, ln, "nb_vertex")
+            if nv < 3:
+                raise cur.err(ln, 40, f"POLYG needs at least 3 vertices, got {nv}")
+            v = np.zeros((nv, 2))
+            for k in range(nv):
+                lk, tk = cur.next(f"vertex {k + 1} of {nv} of the POLYG of line {ln}")
+                if tk.startswith("$") or tk[:27].strip():
+                    raise cur.err(lk, 1, f"expected vertex {k + 1} of {nv} (POLYG of line {ln})")
+                v[k, 0] = parse_real(tk, 35, 48, p, lk, "vertex x", blank_ok=False)
+                v[k, 1] = parse_real(tk, 56, 69, p, lk, "vertex y", blank_ok=False)
+            if polygon_area(v) <= 0.0:
+                raise cur.err(ln, 2, "POLYG vertices are not counter-clockwise (signed area <= 0)")
+            return Polygon(v, color, check=False)
+    except ValueError as e:
+        if isinstance(e, DatboxError):
+            raise
+        raise cur.err(ln, 2, str(e)) from None
+    raise cur.err(ln, 2, f"unknown contactor type {kind!r} (DISKx, xKSID, JONCx, POLYG)")
+
+
+def read_bodies(path):
+    """BODIES.DAT -> list of pre.Body (numbered 1.. in order of appearance; avrd,
+    gyrd, node coordinates and contactors exactly as read)."""
+    cur = _Cursor(path)
+    bodies = []
+    while cur.more():
+        ln, t = cur.next("$bdyty")
+        if _keyword(t) != "$bdyty":
+            raise cur.err(ln, 1, f"expected $bdyty, found {t.strip()[:20]!r}")
+        lm, tm = cur.next("body model line")
+        model = field(tm, 2, 6)
+        if model != "RBDY2":
+            raise cur.err(lm, 2, f"body model {model!r}: only RBDY2 is supported")
+        body = None
+        behav = None
+        avrd = gyrd = 0.0
+        coor = None
+        tactors = []
+        while True:
+            lk, tk = cur.next("$$$$$$ (end of body)")
+            kw = _keyword(tk)
+            if kw == "$$$$$$":
+                break
+            if kw == "$blmty":
+                lb, tb = cur.next("PLAIN line")
+                if field(tb, 2, 6) != "PLAIN":
+                    raise cur.err(lb, 2, f"expected PLAIN bulk element, found {field(tb, 2, 6)!r}")
+                behav = field(tb, 23, 27)
+                avrd = parse_real(tb, 35, 48, cur.path, lb, "avrd")
+                gyrd = parse_real(tb, 56, 69, cur.path, lb, "gyrd")
+            elif kw == "$nodty":
+                lnn, tn = cur.next("NO3xx line")
+                if field(tn, 2, 6) != "NO3xx":
+                    raise cur.err(lnn, 2, f"expected NO3xx node, found {field(tn, 2, 6)!r}")
+                coor = [parse_real(tn, c, c + 13, cur.path, lnn, f"coo{k + 1}")
+                        for k, c in enumerate((35, 56, 77))]
+            elif kw == "$tacty":
+                while True:
+                    lt, tt = cur.peek()
+                    if tt is None or tt.startswith("$"):
+                        break
+                    cur.next("contactor")
+                    tactors.append(_read_tactor(cur, lt, tt))
+            else:
+                raise cur.err(lk, 1, f"unexpected line in body record: {tk.strip()[:30]!r}")
+        if behav is None:
+            raise cur.err(lm, 1, "body without $blmty PLAIN line")
+        if coor is None:
+            raise cur.err(lm, 1, "body without $nodty NO3xx line")
+        if not tactors:
+            raise cur.err(lm, 1, "body without contactor ($tacty)")
+        try:
+            body = Body(behav, coor[:2], coor[2], model=model, avrd=avrd, gyrd=gyrd)
+        except ValueError as e:
+            raise cur.err(lm, 1, str(e)) from None
+        body.contactors = tactors
+        body.number = len(bodies) + 1
+        body.source_line = lm
+        bodies.append(body)
+    return bodies
+
+
+# --------------------------------------------------------------------------------------
+# BULK_BEHAV.DAT
+# --------------------------------------------------------------------------------------
+
+def read_bulk_behav(path):
+    """BULK_BEHAV.DAT -> (gravity (3,), dict name -> pre.Material)."""
+    cur = _Cursor(path)
+    gravity = np.zeros(3)
+    mats = {}
+    while cur.more():
+        ln, t = cur.next("keyword")
+        kw = _keyword(t)
+        if kw == "$gravy":
+            lg, tg = cur.next("gravity line")
+            gravity = np.array([parse_real(tg, c, c + 13, cur.path, lg, f"grv{k + 1}")
+                                for k, c in enumerate((25, 46, 67))])
+        elif kw == "$behav":
+            lb, tb = cur.next("bulk behaviour line")
+            name, law = field(tb, 2, 6), field(tb, 9, 38).strip()
+            if not law:
+                raise cur.err(lb, 9, "missing bulk law name (columns 9-38)")
+            dens = parse_real(tb, 46, 59, cur.path, lb, "Umas (density)")
+            # skip the continuation lines of non-rigid laws
+            while True:
+                _, tc = cur.peek()
+                if tc is None or tc.startswith("$") or tc[:6].strip():
+                    break
+                cur.next("continuation")
+            if name in mats:
+                raise cur.err(lb, 2, f"material {name!r} defined twice")
+            try:
+                mats[name] = Material(name, dens, law)
+            except ValueError as e:
+                raise cur.err(lb, 2, str(e)) from None
+        else:
+            raise cur.err(ln, 1, f"unexpected line: {t.strip()[:30]!r}")
+    return gravity, mats
+
+
+# --------------------------------------------------------------------------------------
+# TACT_BEHAV.DAT
+# --------------------------------------------------------------------------------------
+
+def _pairs(cur, ln, t):
+    """(label, value) pairs of a law line: labels at 41-45 / 62-66, values at 46-59 / 67-80."""
+    out = []
+    for cl, cv in ((41, 46), (62, 67)):
+        lab = field(t, cl, cl + 4)
+        val = field(t, cv, cv + 13)
+        if not lab.strip() and not val.strip():
+            continue
+        out.append((lab, parse_real(t, cv, cv + 13, cur.path, ln, f"law parameter {lab.strip()}",
+                                    blank_ok=False)))
+    return out
+
+
+def read_tact_behav(path):
+    """TACT_BEHAV.DAT -> (dict name -> pre.ContactLaw, list of pre.SeeRule)."""
+    cur = _Cursor(path)
+    laws, rules = {}, []
+    while cur.more():
+        ln, t = cur.next("keyword")
+        kw = _keyword(t)
+        if kw == "$behav":
+            lb, tb = cur.next("contact law line")
+            name, law = field(tb, 2, 6), field(tb, 9, 38).strip()
+            if not law:
+                raise cur.err(lb, 9, "missing contact law name (columns 9-38)")
+            lines = [_pairs(cur, lb, tb)]
+            while True:
+                lc, tc = cur.peek()
+                if tc is None or tc.startswith("$") or tc[:40].strip():
+                    break
+                cur.next("law parameters")
+                lines.append(_pairs(cur, lc, tc))
+            lines = [l for l in lines if l]
+            counts = [len(l) for l in lines]
+            if law in LAW_LAYOUT:
+                layout = LAW_LAYOUT[law]
+                if counts != [len(l) for l in layout]:
+                    raise cur.err(lb, 41, f"law {law}: expected parameters "
+                                  f"{' / '.join(' '.join(l) for l in layout)} "
+                                  f"({[len(l) for l in layout]} per line), found {counts} per line")
+            else:
+                layout, used = [], set()
+                for l in lines:
+                    keys = []
+                    for lab, _ in l:
+                        k = lab.replace("=", "").strip() or "p"
+                        base, n = k, 2
+                        while k in used:
+                            k, n = f"{base}{n}", n + 1
+                        used.add(k)
+                        keys.append(k)
+                    layout.append(keys)
+            params, labels = {}, {}
+            for keys, l in zip(layout, lines):
+                for k, (lab, val) in zip(keys, l):
+                    params[k], labels[k] = val, lab
+            if name in laws:
+                raise cur.err(lb, 2, f"contact law {name!r} defined twice")
+            try:
+                laws[name] = ContactLaw(name, law, layout=layout, labels=labels, **params)
+            except ValueError as e:
+                raise cur.err(lb, 2, str(e)) from None
+        elif kw == "$seety":
+            while True:
+                ls, ts = cur.peek()
+                if ts is None or ts.startswith("$"):
+                    break
+                cur.next("see rule")
+                if field(ts, 2, 6) == "cdbdy":
+                    continue                       # column header
+                if ts.startswith("+"):
+                    if not rules:
+                        raise cur.err(ls, 1, "'+' global alert line without a see rule")
+                    rules[-1].global_alert = parse_real(ts, 55, 68, cur.path, ls, "global alert",
+                                                        blank_ok=False)
+                    continue
+                try:
+                    rules.append(SeeRule(cdbdy=field(ts, 2, 6), cdtac=field(ts, 9, 13),
+                                         cdcol=field(ts, 16, 20), behav=field(ts, 23, 27),
+                                         anbdy=field(ts, 30, 34), antac=field(ts, 37, 41),
+                                         ancol=field(ts, 44, 48),
+                                         alert=parse_real(ts, 55, 68, cur.path, ls, "alert",
+                                                          blank_ok=False)))
+                except ValueError as e:
+                    if isinstance(e, DatboxError):
+                        raise
+                    raise cur.err(ls, 2, str(e)) from None
+                rules[-1].source_line = ls
+        else:
+            raise cur.err(ln, 1, f"unexpected line: {t.strip()[:30]!r}")
+    return laws, rules
+
+
+# --------------------------------------------------------------------------------------
+# DRV_DOF.DAT and evolution files
+# --------------------------------------------------------------------------------------
+
+def read_evolution(path):
+    """A two-column (t, value) evolution file -> (n, 2) array (free format)."""
+    rows = []
+    with open(path, "r", encoding="latin-1") as f:
+        for i, raw in enumerate(f, start=1):
+            s = raw.strip()
+            if not s or s[0] in "!#":
+                continue
+            parts = s.replace("D", "E").replace("d", "E").split()
+            if len(parts) < 2:
+                raise DatboxError(path, i, 1, "expected two columns: time value")
+            try:
+                rows.append((float(parts[0]), float(parts[1])))
+            except ValueError:
+                raise DatboxError(path, i, 1, f"cannot read {s!r} as two numbers") from None
+    d = np.array(rows, dtype=float).reshape(-1, 2)
+    if len(d) == 0:
+        raise DatboxError(path, 1, 1, "empty evolution file")
+    if np.any(np.diff(d[:, 0]) <= 0.0):
+        raise DatboxError(path, 1, 1, "evolution times must be strictly increasing")
+    return d
+
+
+def read_drv_dof(path, datbox_dir=None):
+    """DRV_DOF.DAT -> dict body number -> list of pre.DrivenDof. Evolution files are
+    loaded from ``datbox_dir`` (default: the folder of path) when they exist; their
+    text is kept so that writing the case again reproduces them unchanged."""
+    cur = _Cursor(path)
+    datbox_dir = Path(datbox_dir) if datbox_dir is not None else Path(path).parent
+    out = {}
+    while cur.more():
+        ln, t = cur.next("$bdyty")
+        if _keyword(t) != "$bdyty":
+            raise cur.err(ln, 1, f"expected $bdyty, found {t.strip()[:20]!r}")
+        lm, tm = cur.next("body line")
+        if field(tm, 2, 6) != "RBDY2":
+            raise cur.err(lm, 2, f"body model {field(tm, 2, 6)!r}: only RBDY2 is supported")
+        num = parse_int(tm, 7, 15, cur.path, lm, "body number")
+        lst = out.setdefault(num, [])
+        while True:
+            lk, tk = cur.next("$$$$$$ (end of body)")
+            kw = _keyword(tk)
+            if kw == "$$$$$$":
+                break
+            if kw == "$nodty":
+                cur.next("NO3xx line")
+            elif kw == "$dofty":
+                while True:
+                    ld, td = cur.peek()
+                    if td is None or td.startswith("$"):
+                        break
+                    cur.next("driven dof")
+                    kind = field(td, 2, 6)
+                    if kind not in ("vlocy", "force"):
+                        raise cur.err(ld, 2, f"driven dof kind {kind!r}: 'vlocy' or 'force'")
+                    dof = parse_int(td, 7, 13, cur.path, ld, "dof number")
+                    if dof not in (1, 2, 3):
+                        raise cur.err(ld, 9, f"RBDY2 dof must be 1, 2 or 3, got {dof}")
+                    if field(td, 15, 23) == "evolution":
+                        fname = td[24:64].strip()
+                        if not fname:
+                            raise cur.err(ld, 25, "missing evolution file name (columns 25-64)")
+                        fpath = datbox_dir / fname
+                        data = text = None
+                        if fpath.exists():
+                            data = read_evolution(fpath)
+                            text = fpath.read_text(encoding="latin-1")
+                        d = DrivenDof(dof, kind, evolution=fname, evolution_data=data)
+                        d.evolution_text = text
+                    else:
+                        vals = [parse_real(td, c, c + 13, cur.path, ld, name)
+                                for c, name in zip((15, 30, 45, 60, 75, 90),
+                                                   ("CT", "AMP", "OMEGA", "PHI", "RAMPI", "RAMP"))]
+                        d = DrivenDof(dof, kind, *vals)
+                    d.source_line = ld
+                    lst.append(d)
+            else:
+                raise cur.err(lk, 1, f"unexpected line in DRV_DOF body record: {tk.strip()[:30]!r}")
+    return out
+
+
+# --------------------------------------------------------------------------------------
+# DOF.INI / DOF.OUT.n
+# --------------------------------------------------------------------------------------
+
+def read_dof(path):
+    """DOF.INI or DOF.OUT.n -> (step, time, dict body number -> (X (3,), V (3,)))."""
+    cur = _Cursor(path)
+    step, time = 0, 0.0
+    states = {}
+    while cur.more():
+        ln, t = cur.next("keyword")
+        kw = _keyword(t)
+        if kw == "$steps":
+            step = parse_int(t, 7, 15, cur.path, ln, "step")
+            time = parse_real(t, 35, 48, cur.path, ln, "time")
+        elif kw == "$bdyty":
+            lm, tm = cur.next("body line")
+            if field(tm, 2, 6) != "RBDY2":
+                raise cur.err(lm, 2, f"body model {field(tm, 2, 6)!r}: only RBDY2 is supported")
+            num = parse_int(tm, 7, 15, cur.path, lm, "body number")
+            x = v = None
+            while True:
+                lk, tk = cur.next("$$$$$$ (end of body)")
+                kw2 = _keyword(tk)
+                if kw2 == "$$$$$$":
+                    break
+                if kw2 == "$nodty":
+                    lx, tx = cur.next("X line")
+                    x = np.array([parse_real(tx, c, c + 13, cur.path, lx, f"X({k + 1})")
+                                  for k, c in enumerate((35, 56, 77))])
+                    lv, tv = cur.next("V line")
+                    v = np.array([parse_real(tv, c, c + 13, cur.path, lv, f"V({k + 1})")
+                                  for k, c in enumerate((35, 56, 77))])
+                else:
+                    raise cur.err(lk, 1, f"unexpected line in DOF body record: {tk.strip()[:30]!r}")
+            if x is None:
+                raise cur.err(lm, 1, "body record without $nodty")
+            states[num] = (x, v)
+        else:
+            raise cur.err(ln, 1, f"unexpected line: {t.strip()[:30]!r}")
+    return step, time, states
+
+
+read_dof_ini = read_dof
+
+
+# --------------------------------------------------------------------------------------
+# COMMAND.DAT
+# --------------------------------------------------------------------------------------
+
+def read_command(path):
+    """COMMAND.DAT (one 'keyword value' per line) -> pre.RunControl."""
+    rc = RunControl()
+    seen = {}
+    with open(path, "r", encoding="latin-1") as f:
+        for i, raw in enumerate(f, start=1):
+            s = raw.rstrip("\n")
+            cut = min([p for p in (s.find("!"), s.find("#")) if p >= 0], default=len(s))
+            s = s[:cut]
+            parts = s.split()
+            if not parts:
+                continue
+            col = len(s) - len(s.lstrip()) + 1
+            if len(parts) != 2:
+                raise DatboxError(path, i, col, "expected 'keyword value'")
+            k, v = parts
+            if k in seen:
+                raise DatboxError(path, i, col, f"{k} already given on line {seen[k]}")
+            try:
+                rc.values[k] = RunControl._convert(k, v)
+            except ValueError as e:
+                raise DatboxError(path, i, col, str(e)) from None
+            seen[k] = i
+    return rc
+
+
+# --------------------------------------------------------------------------------------
+# whole case
+# --------------------------------------------------------------------------------------
+
+def find_datbox(case_dir):
+    """case_dir/DATBOX, or case_dir itself when it holds BODIES.DAT."""
+    p = Path(case_dir)
+    if (p / "DATBOX" / "BODIES.DAT").exists():
+        return p / "DATBOX"
+    if (p / "BODIES.DAT").exists():
+        return p
+    raise FileNotFoundError(f"no DATBOX/BODIES.DAT under {p}")
+
+
+def read_case(case_dir):
+    """Read a case directory (or a DATBOX folder) into a pre.Case."""
+    d = find_datbox(case_dir)
+    case = Case()
+    for b in read_bodies(d / "BODIES.DAT"):
+        case.bodies.append(b)
+    if (d / "BULK_BEHAV.DAT").exists():
+        case.gravity, case.materials = read_bulk_behav(d / "BULK_BEHAV.DAT")
+    else:
+        case.gravity = np.zeros(3)
+    if (d / "TACT_BEHAV.DAT").exists():
+        case.laws, case.see_rules = read_tact_behav(d / "TACT_BEHAV.DAT")
+    nb = len(case.bodies)
+    if (d / "DRV_DOF.DAT").exists():
+        for num, lst in read_drv_dof(d / "DRV_DOF.DAT", d).items():
+            if not 1 <= num <= nb:
+                raise DatboxError(d / "DRV_DOF.DAT", lst[0].source_line if lst else 0, 9,
+                                  f"driven body {num} does not exist ({nb} bodies)")
+            case.bodies[num - 1].driven.extend(lst)
+    if (d / "DOF.INI").exists():
+        step, time, states = read_dof(d / "DOF.INI")
+        case.dof_step, case.dof_time = step, time
+        for num, (x, v) in states.items():
+            if not 1 <= num <= nb:
+                raise DatboxError(d / "DOF.INI", 0, 9, f"body {num} does not exist ({nb} bodies)")
+            case.bodies[num - 1].x0 = x
+            case.bodies[num - 1].v0 = v
+    if (d / "COMMAND.DAT").exists():
+        case.run = read_command(d / "COMMAND.DAT")
+    return case

@@ -1,0 +1,914 @@
+"""Pre-processing: build a Fracas case (an LMGC90-compatible DATBOX) from Python.
+
+A :class:`Case` holds materials, contact laws, visibility (see) rules, gravity,
+RBDY2 bodies with their contactors (DISKx, xKSID, JONCx, POLYG, several per body
+allowed), driven degrees of freedom, the initial state and the run control.
+``Case.write(case_dir)`` writes ``case_dir/DATBOX/`` in LMGC90's fixed-column
+formats (the layout pylmgc90.pre writes, column for column) plus our
+``COMMAND.DAT``; :func:`fracas_tools.datbox.read_case` reads it back.
+
+Example::
+
+    from fracas_tools import Case
+    case = Case(gravity=(0.0, -9.81))
+    case.add_material("STONE", density=2600.0)
+    b = case.add_disk((0.0, 0.1), 0.1, "STONE", color="BLEUx")
+    b.set_velocity(1.0, 0.0, 0.0)
+    ...
+    case.run.set(time_step=1e-3, number_of_steps=1000)
+    case.write("my_case")
+"""
+
+import math
+import os
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from .fortran_io import d14, e14
+
+__all__ = [
+    "Case", "Scene", "Body", "Disk", "Xksid", "Jonc", "Polygon", "Material", "ContactLaw",
+    "SeeRule", "DrivenDof", "RunControl", "LAW_LAYOUT", "COMMAND_KEYWORDS",
+    "polygon_area", "polygon_centroid", "polygon_polar_moment", "is_convex",
+]
+
+# --------------------------------------------------------------------------------------
+# contact laws: parameter names and LMGC90's line layout (pairs per line)
+# --------------------------------------------------------------------------------------
+
+#: Parameter layout per contact law, as LMGC90 reads them: one inner list per line
+#: of TACT_BEHAV.DAT (one or two parameters per line), in LMGC90's parameter order.
+LAW_LAYOUT = {
+    "IQS_CLB": [["fric"]],
+    "IQS_CLB_g0": [["fric"]],
+    "GAP_SGR_CLB": [["fric"]],
+    "VEL_SGR_CLB": [["fric"]],
+    "IQS_DS_CLB": [["dyfr", "stfr"]],
+    "GAP_SGR_DS_CLB": [["dyfr", "stfr"]],
+    "RST_CLB": [["rstn", "rstt"], ["fric"]],
+    "IQS_MAC_CZM": [["dyfr", "stfr"], ["cn", "ct"], ["b", "w"]],
+    "MAC_CZM": [["dyfr", "stfr"], ["cn", "ct"], ["b", "w"]],
+}
+
+CONTACTOR_KINDS = ("DISKx", "xKSID", "JONCx", "POLYG")
+
+
+def _label(key):
+    """The 5-character label written in front of a value: 'fric=', 'cn  ='."""
+    return (key[:4]).ljust(4) + "="
+
+
+def _check_name(name, what):
+    if not isinstance(name, str) or len(name) != 5 or " " in name:
+        raise ValueError(f"{what} {name!r} must be exactly 5 characters without blanks "
+                         f"(LMGC90 nicknames, e.g. 'STONE', 'BLEUx', 'iqsdd')")
+    return name
+
+
+# --------------------------------------------------------------------------------------
+# polygon geometry (per unit area density)
+# --------------------------------------------------------------------------------------
+
+def polygon_area(v):
+    """Signed area of a polygon (positive when counter-clockwise)."""
+    v = np.asarray(v, dtype=float)
+    x, y = v[:, 0], v[:, 1]
+    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+
+def polygon_centroid(v):
+    """Centroid of a simple polygon."""
+    v = np.asarray(v, dtype=float)
+    x, y = v[:, 0], v[:, 1]
+    x1, y1 = np.roll(x, -1), np.roll(y, -1)
+    c = x * y1 - x1 * y
+    a = 0.5 * np.sum(c)
+    if a == 0.0:
+        raise ValueError("degenerate polygon (zero area)")
+    return np.array([np.sum((x + x1) * c) / (6.0 * a), np.sum((y + y1) * c) / (6.0 * a)])
+
+
+def polygon_polar_moment(v):
+    """Polar second moment of area about the origin (for a counter-clockwise polygon)."""
+    v = np.asarray(v, dtype=float)
+    x, y = v[:, 0], v[:, 1]
+    x1, y1 = np.roll(x, -1), np.roll(y, -1)
+    c = x * y1 - x1 * y
+    return float(np.sum(c * (x * x + x * x1 + x1 * x1 + y * y + y * y1 + y1 * y1)) / 12.0)
+
+
+def is_convex(v, tol=1e-12):
+    """True if the counter-clockwise polygon v is convex (collinear vertices allowed)."""
+    v = np.asarray(v, dtype=float)
+    e = np.roll(v, -1, axis=0) - v
+    cross = e[:, 0] * np.roll(e, -1, axis=0)[:, 1] - e[:, 1] * np.roll(e, -1, axis=0)[:, 0]
+    scale = float(np.max(np.abs(v))) ** 2 if len(v) else 1.0
+    return bool(np.all(cross >= -tol * max(scale, 1e-300)))
+
+
+# --------------------------------------------------------------------------------------
+# contactors
+# --------------------------------------------------------------------------------------
+
+class Disk:
+    """DISKx contactor centred on the body node."""
+    kind = "DISKx"
+
+    def __init__(self, radius, color="BLEUx"):
+        if not radius > 0.0:
+            raise ValueError(f"disk radius must be positive, got {radius}")
+        self.radius = float(radius)
+        self.color = _check_name(color, "colour")
+
+    def area(self):
+        return math.pi * self.radius ** 2
+
+    def polar_moment(self):
+        return 0.5 * math.pi * self.radius ** 4
+
+    def lines(self, rank):
+        return [f" DISKx{rank:7d}  color  {self.color}  byrd={e14(self.radius, 'E')}"]
+
+    def __repr__(self):
+        return f"Disk(radius={self.radius!r}, color={self.color!r})"
+
+
+class Xksid:
+    """xKSID contactor: the inner boundary of a hollow disk (a drum) of this radius."""
+    kind = "xKSID"
+
+    def __init__(self, radius, color="DRUMx"):
+        if not radius > 0.0:
+            raise ValueError(f"xKSID radius must be positive, got {radius}")
+        self.radius = float(radius)
+        self.color = _check_name(color, "colour")
+
+    def area(self):
+        return None      # no mass properties: pylmgc90 writes avrd = gyrd = 0
+
+    def polar_moment(self):
+        return None
+
+    def lines(self, rank):
+        return [f" xKSID{rank:7d}  color  {self.color}  byrd={e14(self.radius, 'E')}"]
+
+    def __repr__(self):
+        return f"Xksid(radius={self.radius!r}, color={self.color!r})"
+
+
+class Jonc:
+    """JONCx contactor: a wall of half length ax1 (along the body x axis) and half
+    thickness ax2 with rounded ends, centred on the body node."""
+    kind = "JONCx"
+
+    def __init__(self, ax1, ax2, color="WALLx"):
+        if not (ax1 > 0.0 and ax2 > 0.0):
+            raise ValueError(f"JONCx half sizes must be positive, got {ax1}, {ax2}")
+        self.ax1, self.ax2 = float(ax1), float(ax2)
+        self.color = _check_name(color, "colour")
+
+    def area(self):
+        return 4.0 * self.ax1 * self.ax2 + math.pi * self.ax2 ** 2
+
+    def polar_moment(self):
+        # pylmgc90.pre's convention (reproduced so that avrd/gyrd match its decks):
+        # rectangle part 4*a1*a2*(a1^2 + a2^2)/2, plus a disk of radius a2 at distance a1.
+        a1, a2 = self.ax1, self.ax2
+        return 2.0 * a1 * a2 * (a1 * a1 + a2 * a2) + math.pi * a2 * a2 * (a1 * a1 + 0.5 * a2 * a2)
+
+    def lines(self, rank):
+        return [f" JONCx{rank:7d}  color  {self.color}  axe1={e14(self.ax1, 'E')}"
+                f"  axe2={e14(self.ax2, 'E')}"]
+
+    def __repr__(self):
+        return f"Jonc(ax1={self.ax1!r}, ax2={self.ax2!r}, color={self.color!r})"
+
+
+class Polygon:
+    """POLYG contactor: convex polygon, vertices counter-clockwise, relative to the
+    body node (in the body's reference orientation)."""
+    kind = "POLYG"
+
+    def __init__(self, vertices, color="BLEUx", check=True):
+        v = np.array(vertices, dtype=float)
+        if v.ndim != 2 or v.shape[1] != 2 or v.shape[0] < 3:
+            raise ValueError("a polygon needs an (n, 2) array of n >= 3 vertices")
+        if check:
+            a = polygon_area(v)
+            if a <= 0.0:
+                raise ValueError("polygon vertices must be counter-clockwise (signed area "
+                                 f"{a:.6g} <= 0); reverse them, e.g. vertices[::-1]")
+            if not is_convex(v):
+                raise ValueError("POLYG contactors must be convex; split a non-convex shape "
+                                 "into convex parts on one body (add_polygon_cluster)")
+        self.vertices = v
+        self.color = _check_name(color, "colour")
+
+    def area(self):
+        return polygon_area(self.vertices)
+
+    def polar_moment(self):
+        return polygon_polar_moment(self.vertices)
+
+    def lines(self, rank):
+        out = [f" POLYG{rank:7d}  color  {self.color}  nb_vertex={len(self.vertices):7d}"]
+        for x, y in self.vertices:
+            out.append(" " * 29 + f"coo1={e14(x, 'E')}  coo2={e14(y, 'E')}")
+        return out
+
+    def __repr__(self):
+        return f"Polygon({len(self.vertices)} vertices, color={self.color!r})"
+
+
+# --------------------------------------------------------------------------------------
+# driven dofs, bodies
+# --------------------------------------------------------------------------------------
+
+class DrivenDof:
+    """An imposed velocity ('vlocy') or added force ('force') on one dof (1: x, 2: y,
+    3: rotation). value(t) = (ct + amp*cos(omega*t + phi)) * min(1, rampi + ramp*t),
+    or, if ``evolution`` names a file in DATBOX, the piecewise-linear interpolation
+    of its two columns (t, value); ``evolution_data`` (n, 2), if given, is written to
+    that file by Case.write."""
+
+    def __init__(self, dof, kind="vlocy", ct=0.0, amp=0.0, omega=0.0, phi=0.0, rampi=1.0,
+                 ramp=0.0, evolution=None, evolution_data=None):
+        if dof not in (1, 2, 3):
+            raise ValueError(f"RBDY2 dof must be 1, 2 or 3, got {dof}")
+        if kind not in ("vlocy", "force"):
+            raise ValueError(f"driven dof kind must be 'vlocy' or 'force', got {kind!r}")
+        self.dof, self.kind = int(dof), kind
+        self.ct, self.amp, self.omega, self.phi = float(ct), float(amp), float(omega), float(phi)
+        self.rampi, self.ramp = float(rampi), float(ramp)
+        self.evolution = evolution
+        if evolution is not None:
+            if not evolution or len(evolution) > 40 or " " in evolution:
+                raise ValueError(f"evolution file name {evolution!r}: 1-40 characters, no blanks")
+        self.evolution_data = None
+        self.evolution_text = None    # the file text as read, rewritten unchanged
+        if evolution_data is not None:
+            d = np.array(evolution_data, dtype=float)
+            if d.ndim != 2 or d.shape[1] != 2:
+                raise ValueError("evolution_data must be an (n, 2) array of (t, value)")
+            if np.any(np.diff(d[:, 0]) <= 0.0):
+                raise ValueError("evolution times must be strictly increasing")
+            self.evolution_data = d
+
+    def value(self, t):
+        """The imposed value at time t (numpy-vectorised)."""
+        t = np.asarray(t, dtype=float)
+        if self.evolution is not None:
+            if self.evolution_data is None:
+                raise ValueError(f"evolution file {self.evolution} was not loaded")
+            d = self.evolution_data
+            if len(d) == 1:
+                return np.full_like(t, d[0, 1])
+            # piecewise linear, end segments extrapolated (as LMGC90)
+            i = np.clip(np.searchsorted(d[:, 0], t) - 1, 0, len(d) - 2)
+            t0, t1, v0, v1 = d[i, 0], d[i + 1, 0], d[i, 1], d[i + 1, 1]
+            return v0 + (v1 - v0) * (t - t0) / (t1 - t0)
+        return (self.ct + self.amp * np.cos(self.omega * t + self.phi)) * \
+            np.minimum(1.0, self.rampi + self.ramp * t)
+
+    def line(self):
+        if self.evolution is not None:
+            return f" {self.kind}{self.dof:7d} evolution {self.evolution}"
+        vals = (self.ct, self.amp, self.omega, self.phi, self.rampi, self.ramp)
+        return f" {self.kind}{self.dof:7d}" + "".join(" " + e14(x) for x in vals)
+
+    def __repr__(self):
+        if self.evolution:
+            return f"DrivenDof({self.dof}, {self.kind!r}, evolution={self.evolution!r})"
+        return (f"DrivenDof({self.dof}, {self.kind!r}, ct={self.ct}, amp={self.amp}, "
+                f"omega={self.omega}, phi={self.phi}, rampi={self.rampi}, ramp={self.ramp})")
+
+
+class Body:
+    """An RBDY2 body: a material, a reference node (x, y, angle), one or more
+    contactors, an initial state (displacement X and velocity V from the reference,
+    written to DOF.INI when non-zero) and driven dofs.
+
+    avrd/gyrd (average and gyration radius, mass = density*pi*avrd^2, inertia =
+    mass*gyrd^2) are computed from the contactors when left to None (as pylmgc90.pre
+    does); a value read from a file is kept as read."""
+
+    def __init__(self, material, center=(0.0, 0.0), angle=0.0, model="RBDY2",
+                 avrd=None, gyrd=None):
+        self.material = _check_name(material, "material")
+        self.model = model
+        self.coor = np.array([float(center[0]), float(center[1]), float(angle)])
+        self.contactors = []
+        self.avrd, self.gyrd = avrd, gyrd
+        self.x0 = np.zeros(3)
+        self.v0 = np.zeros(3)
+        self.driven = []
+        self.number = None        # serial number, set when added to a Case
+
+    # -- contactors --
+    def add_disk(self, radius, color="BLEUx"):
+        self.contactors.append(Disk(radius, color))
+        return self
+
+    def add_xksid(self, radius, color="DRUMx"):
+        self.contactors.append(Xksid(radius, color))
+        return self
+
+    def add_jonc(self, ax1, ax2, color="WALLx"):
+        self.contactors.append(Jonc(ax1, ax2, color))
+        return self
+
+    def add_polygon(self, vertices, color="BLEUx"):
+        """Add a POLYG with vertices relative to the body node."""
+        self.contactors.append(Polygon(vertices, color))
+        return self
+
+    # -- mass properties --
+    def mass_properties(self):
+        """(area, polar moment about the node) per unit density, or None when a
+        contactor (xKSID) has none."""
+        if not self.contactors:
+            return None
+        a = j = 0.0
+        for c in self.contactors:
+            ca = c.area()
+            if ca is None:
+                return None
+            a += ca
+            j += c.polar_moment()
+        return a, j
+
+    def radii(self):
+        """(avrd, gyrd) as written in BODIES.DAT."""
+        if self.avrd is not None and self.gyrd is not None:
+            return float(self.avrd), float(self.gyrd)
+        mp = self.mass_properties()
+        if mp is None:
+            av, gy = 0.0, 0.0
+        else:
+            a, j = mp
+            av, gy = math.sqrt(a / math.pi), math.sqrt(j / a)
+        return (float(self.avrd) if self.avrd is not None else av,
+                float(self.gyrd) if self.gyrd is not None else gy)
+
+    def mass(self, density):
+        av, _ = self.radii()
+        return density * math.pi * av * av
+
+    # -- initial state --
+    def set_velocity(self, vx=0.0, vy=0.0, omega=0.0):
+        """Initial velocity (vx, vy, spin), written to DOF.INI."""
+        self.v0 = np.array([vx, vy, omega], dtype=float)
+        return self
+
+    def set_displacement(self, dx=0.0, dy=0.0, rotation=0.0):
+        """Initial displacement from the reference node (DOF.INI X)."""
+        self.x0 = np.array([dx, dy, rotation], dtype=float)
+        return self
+
+    def rotate(self, angle):
+        """Rotate the body about its node by ``angle`` (rad, counter-clockwise), the
+        LMGC90 way: the geometry in BODIES.DAT stays unrotated and the angle goes to
+        DOF.INI as X(3)."""
+        self.x0[2] += float(angle)
+        return self
+
+    # -- driven dofs --
+    def impose_velocity(self, dofs=(1, 2, 3), ct=0.0, amp=0.0, omega=0.0, phi=0.0,
+                        rampi=1.0, ramp=0.0):
+        """Drive the velocity of one dof or a list of dofs (1: x, 2: y, 3: rotation)."""
+        for d in np.atleast_1d(dofs):
+            self.driven.append(DrivenDof(int(d), "vlocy", ct, amp, omega, phi, rampi, ramp))
+        return self
+
+    def impose_force(self, dofs, ct=0.0, amp=0.0, omega=0.0, phi=0.0, rampi=1.0, ramp=0.0):
+        """Add a driven force on one dof or a list of dofs."""
+        for d in np.atleast_1d(dofs):
+            self.driven.append(DrivenDof(int(d), "force", ct, amp, omega, phi, rampi, ramp))
+        return self
+
+    def impose_evolution(self, dof, kind, file, data=None):
+        """Drive a dof from a DATBOX file of two columns (t, value); ``data`` (n, 2)
+        is written to DATBOX/file by Case.write."""
+        self.driven.append(DrivenDof(dof, kind, evolution=file, evolution_data=data))
+        return self
+
+    def fix(self):
+        """Clamp the body: the three velocities driven to zero."""
+        return self.impose_velocity((1, 2, 3))
+
+    @property
+    def center(self):
+        return self.coor[:2].copy()
+
+    def __repr__(self):
+        return (f"Body(number={self.number}, material={self.material!r}, "
+                f"center=({self.coor[0]:.6g}, {self.coor[1]:.6g}), contactors={self.contactors})")
+
+
+# --------------------------------------------------------------------------------------
+# materials, laws, see rules
+# --------------------------------------------------------------------------------------
+
+class Material:
+    """A bulk behaviour of BULK_BEHAV.DAT ('RIGID' with a density for rigid bodies)."""
+
+    def __init__(self, name, density, law="RIGID"):
+        self.name = _check_name(name, "material")
+        self.law = law
+        self.density = float(density)
+        if len(law) > 30:
+            raise ValueError("bulk law name longer than 30 characters")
+
+    def __repr__(self):
+        return f"Material({self.name!r}, density={self.density!r}, law={self.law!r})"
+
+
+class ContactLaw:
+    """A contact law of TACT_BEHAV.DAT: nickname (5 chars), LMGC90 law name and
+    parameters in LMGC90's order. ``layout`` gives the lines (lists of 1 or 2 keys);
+    it defaults to LAW_LAYOUT for the known laws. ``labels`` maps a key to the
+    5-character label written before its value (default 'fric=', 'cn  =', ...)."""
+
+    def __init__(self, name, law, layout=None, labels=None, **params):
+        self.name = _check_name(name, "contact law")
+        if not law or len(law) > 30:
+            raise ValueError(f"law name {law!r}: 1 to 30 characters")
+        self.law = law
+        if layout is None:
+            if law in LAW_LAYOUT:
+                layout = LAW_LAYOUT[law]
+            else:
+                keys = list(params)
+                layout = [keys[i:i + 2] for i in range(0, len(keys), 2)]
+        self.layout = [list(line) for line in layout]
+        keys = [k for line in self.layout for k in line]
+        if any(len(line) not in (1, 2) for line in self.layout):
+            raise ValueError("each parameter line holds 1 or 2 parameters")
+        missing = [k for k in keys if k not in params]
+        extra = [k for k in params if k not in keys]
+        if missing or extra:
+            raise ValueError(f"law {law}: parameters must be exactly {keys}"
+                             + (f"; missing {missing}" if missing else "")
+                             + (f"; unexpected {extra}" if extra else ""))
+        self.params = {k: float(params[k]) for k in keys}
+        self.labels = {k: _label(k) for k in keys}
+        if labels:
+            for k, lab in labels.items():
+                if len(lab) != 5:
+                    raise ValueError(f"label {lab!r} must be 5 characters")
+                self.labels[k] = lab
+
+    def lines(self):
+        out = []
+        for i, line in enumerate(self.layout):
+            head = f" {self.name}  {self.law.ljust(30)}  " if i == 0 else " " * 40
+            pairs = "  ".join(f"{self.labels[k]}{e14(self.params[k])}" for k in line)
+            out.append(head + pairs)
+        return out
+
+    def __getitem__(self, key):
+        return self.params[key]
+
+    def __repr__(self):
+        p = ", ".join(f"{k}={v!r}" for k, v in self.params.items())
+        return f"ContactLaw({self.name!r}, {self.law!r}, {p})"
+
+
+class SeeRule:
+    """A $seety visibility rule: candidate (body, contactor, colour) sees antagonist
+    (body, contactor, colour) through law ``behav`` within ``alert``."""
+
+    def __init__(self, cdtac, cdcol, behav, antac, ancol, alert, cdbdy="RBDY2",
+                 anbdy="RBDY2", global_alert=None):
+        self.cdbdy, self.anbdy = _check_name(cdbdy, "body model"), _check_name(anbdy, "body model")
+        self.cdtac, self.antac = _check_name(cdtac, "contactor type"), _check_name(antac, "contactor type")
+        self.cdcol, self.ancol = _check_name(cdcol, "colour"), _check_name(ancol, "colour")
+        self.behav = _check_name(behav, "contact law")
+        self.alert = float(alert)
+        if not self.alert > 0.0:
+            raise ValueError(f"alert distance must be positive, got {alert}")
+        self.global_alert = None if global_alert is None else float(global_alert)
+
+    def lines(self):
+        out = ["$seety",
+               " cdbdy  cdtac  cdcol  behav  anbdy  antac  ancol       alert",
+               f" {self.cdbdy}  {self.cdtac}  {self.cdcol}  {self.behav}  {self.anbdy}  "
+               f"{self.antac}  {self.ancol}      {e14(self.alert)}"]
+        if self.global_alert is not None:
+            out.append("+" + " " * 53 + e14(self.global_alert))
+        return out
+
+    def __repr__(self):
+        return (f"SeeRule({self.cdtac}/{self.cdcol} -> {self.antac}/{self.ancol}, "
+                f"law={self.behav!r}, alert={self.alert!r})")
+
+
+# --------------------------------------------------------------------------------------
+# run control (COMMAND.DAT)
+# --------------------------------------------------------------------------------------
+
+#: COMMAND.DAT keywords in the order they are written, with their type and the
+#: accepted values for the string keywords.
+COMMAND_KEYWORDS = {
+    "time_step": float,
+    "number_of_steps": int,
+    "final_time": float,
+    "theta": float,
+    "detection_frequency": int,
+    "nlgs_check": ("Quad", "Maxm", "QM/16"),
+    "nlgs_tolerance": float,
+    "nlgs_relaxation": float,
+    "nlgs_sweeps_per_check": int,
+    "nlgs_max_checks": int,
+    "nlgs_order": ("stored", "reversed", "shuffled"),
+    "nlgs_seed": int,
+    "output_dof_every": int,
+    "output_vtk_every": int,
+    "output_hdf5_every": int,
+    "progress_every": int,
+}
+
+_POSITIVE = {"time_step", "number_of_steps", "final_time", "detection_frequency",
+             "nlgs_tolerance", "nlgs_sweeps_per_check", "nlgs_max_checks"}
+_NONNEGATIVE = {"output_dof_every", "output_vtk_every", "output_hdf5_every", "progress_every"}
+
+
+class RunControl:
+    """The run-control deck DATBOX/COMMAND.DAT: only the keywords set are written
+    (the solver has defaults for the others); time_step and number_of_steps or
+    final_time are required."""
+
+    def __init__(self, **kw):
+        self.values = {}
+        self.set(**kw)
+
+    def set(self, **kw):
+        for k, v in kw.items():
+            self.values[k] = self._convert(k, v)
+        return self
+
+    @staticmethod
+    def _convert(k, v, where=""):
+        if k not in COMMAND_KEYWORDS:
+            raise ValueError(f"{where}unknown COMMAND.DAT keyword {k!r}; known: "
+                             + ", ".join(COMMAND_KEYWORDS))
+        t = COMMAND_KEYWORDS[k]
+        if isinstance(t, tuple):
+            if v not in t:
+                raise ValueError(f"{where}{k} must be one of {t}, got {v!r}")
+            return v
+        try:
+            if t is int:
+                if isinstance(v, str):
+                    v = int(v)
+                elif float(v) != int(v):
+                    raise ValueError
+                v = int(v)
+            else:
+                v = float(str(v).replace("D", "e").replace("d", "e")) if isinstance(v, str) else float(v)
+        except (TypeError, ValueError):
+            raise ValueError(f"{where}{k} needs {'an integer' if t is int else 'a real'} value, "
+                             f"got {v!r}") from None
+        if t is float and not math.isfinite(v):
+            raise ValueError(f"{where}{k} must be finite, got {v!r}")
+        if k in _POSITIVE and not v > 0:
+            raise ValueError(f"{where}{k} must be positive, got {v!r}")
+        if k in _NONNEGATIVE and v < 0:
+            raise ValueError(f"{where}{k} must be >= 0, got {v!r}")
+        if k == "theta" and not 0.0 <= v <= 1.0:
+            raise ValueError(f"{where}theta must be in [0, 1], got {v!r}")
+        return v
+
+    def __getitem__(self, k):
+        return self.values[k]
+
+    def get(self, k, default=None):
+        return self.values.get(k, default)
+
+    def is_empty(self):
+        return not self.values
+
+    def check(self):
+        if "time_step" not in self.values:
+            raise ValueError("COMMAND.DAT: time_step is required (case.run.set(time_step=...))")
+        if "number_of_steps" not in self.values and "final_time" not in self.values:
+            raise ValueError("COMMAND.DAT: number_of_steps or final_time is required")
+
+    @staticmethod
+    def format_value(v):
+        if isinstance(v, str):
+            return v
+        if isinstance(v, int):
+            return str(v)
+        return repr(float(v))
+
+    def lines(self):
+        self.check()
+        out = ["! Fracas run control (keyword value; '!' or '#' start a comment)"]
+        for k in COMMAND_KEYWORDS:
+            if k in self.values:
+                out.append(f"{k} {self.format_value(self.values[k])}")
+        return out
+
+    def __repr__(self):
+        return "RunControl(" + ", ".join(f"{k}={v!r}" for k, v in self.values.items()) + ")"
+
+
+# --------------------------------------------------------------------------------------
+# the case
+# --------------------------------------------------------------------------------------
+
+_HEADER_RULE = "!" + "-" * 71
+
+
+def _steps_line(step, time):
+    # pylmgc90.pre writes step 0 right after '$steps' (cols 7-13); LMGC90's Fortran
+    # writers use A6,2X,I7 (cols 9-15). Both read the same with I7 at 9-15.
+    if step == 0:
+        return f"$steps{step:7d}                time={d14(time)}"
+    return f"$steps  {step:7d}              time={d14(time)}"
+
+
+class Case:
+    """A complete case: DATBOX content plus run control.
+
+    Attributes: gravity (3 values), materials (dict name -> Material), laws (dict
+    name -> ContactLaw), see_rules (list), bodies (list of Body, serial number =
+    position + 1), run (RunControl), dof_step/dof_time (DOF.INI header)."""
+
+    def __init__(self, gravity=(0.0, -9.81, 0.0)):
+        g = list(gravity) + [0.0] * (3 - len(gravity))
+        self.gravity = np.array(g[:3], dtype=float)
+        self.materials = {}
+        self.laws = {}
+        self.see_rules = []
+        self.bodies = []
+        self.run = RunControl()
+        self.dof_step, self.dof_time = 0, 0.0
+
+    # -- materials, laws, rules --
+    def add_material(self, name, density, law="RIGID"):
+        if name in self.materials:
+            raise ValueError(f"material {name!r} already defined")
+        m = Material(name, density, law)
+        self.materials[name] = m
+        return m
+
+    def add_law(self, name, law, **params):
+        """Add a contact law, e.g. add_law('iqsdd', 'IQS_CLB', fric=0.3),
+        add_law('iqsds', 'IQS_DS_CLB', dyfr=0.4, stfr=0.5),
+        add_law('rstcw', 'RST_CLB', rstn=0.3, rstt=0.0, fric=0.5),
+        add_law('gapcl', 'GAP_SGR_CLB', fric=0.3),
+        add_law('macz1', 'IQS_MAC_CZM', dyfr=.73, stfr=.73, cn=1e10, ct=1e11, b=0., w=40.)."""
+        if name in self.laws:
+            raise ValueError(f"contact law {name!r} already defined")
+        c = ContactLaw(name, law, **params)
+        self.laws[name] = c
+        return c
+
+    def add_see(self, cdtac, cdcol, antac, ancol, law, alert, cdbdy="RBDY2", anbdy="RBDY2",
+                global_alert=None):
+        """Candidate contactors (cdtac, cdcol) see antagonists (antac, ancol) through
+        contact law ``law`` (name or ContactLaw) within distance ``alert``."""
+        name = law.name if isinstance(law, ContactLaw) else law
+        r = SeeRule(cdtac, cdcol, name, antac, ancol, alert, cdbdy, anbdy, global_alert)
+        self.see_rules.append(r)
+        return r
+
+    def set_gravity(self, gx, gy, gz=0.0):
+        self.gravity = np.array([gx, gy, gz], dtype=float)
+
+    # -- bodies --
+    def add_body(self, material, center=(0.0, 0.0), angle=0.0, avrd=None, gyrd=None):
+        """Add an empty RBDY2 body at ``center``; give it contactors with
+        body.add_disk / add_jonc / add_polygon / add_xksid."""
+        b = Body(material, center, angle, avrd=avrd, gyrd=gyrd)
+        return self.append(b)
+
+    def append(self, body):
+        self.bodies.append(body)
+        body.number = len(self.bodies)
+        return body
+
+    def add_disk(self, center, radius, material, color="BLEUx"):
+        """A rigid disk (DISKx) centred at ``center``."""
+        return self.add_body(material, center).add_disk(radius, color)
+
+    def add_xksid(self, center, radius, material, color="DRUMx"):
+        """A hollow disk (drum) of inner radius ``radius`` (xKSID)."""
+        return self.add_body(material, center).add_xksid(radius, color)
+
+    def add_jonc(self, center, half_length, half_thickness, material, color="WALLx", angle=0.0):
+        """A JONCx wall; ``angle`` rotates it (written as DOF.INI X(3), like pylmgc90)."""
+        b = self.add_body(material, center).add_jonc(half_length, half_thickness, color)
+        if angle:
+            b.rotate(angle)
+        return b
+
+    def add_polygon(self, vertices, material, color="BLEUx", center=None):
+        """A rigid convex polygon (POLYG). ``vertices`` (n, 2), counter-clockwise,
+        in absolute coordinates; the body node is put at the polygon centroid.
+        With ``center`` given, the vertices are relative to that node instead."""
+        v = np.asarray(vertices, dtype=float)
+        if center is None:
+            c = polygon_centroid(v)
+            return self.add_body(material, c).add_polygon(v - c, color)
+        return self.add_body(material, center).add_polygon(v, color)
+
+    def add_polygon_cluster(self, polygons, material, color="BLEUx"):
+        """One rigid body made of several convex polygons (absolute vertices), e.g.
+        a non-convex block; the node is put at the centroid of the union."""
+        polys = [np.asarray(p, dtype=float) for p in polygons]
+        areas = np.array([polygon_area(p) for p in polys])
+        cents = np.array([polygon_centroid(p) for p in polys])
+        c = (areas[:, None] * cents).sum(axis=0) / areas.sum()
+        b = self.add_body(material, c)
+        for p in polys:
+            b.add_polygon(p - c, color)
+        return b
+
+    # -- checks --
+    def check(self):
+        """Consistency checks; returns a list of warnings, raises on errors."""
+        warns = []
+        for b in self.bodies:
+            if b.material not in self.materials:
+                raise ValueError(f"body {b.number}: material {b.material!r} is not defined "
+                                 f"(add_material)")
+            if not b.contactors:
+                raise ValueError(f"body {b.number} has no contactor")
+            seen = set()
+            for d in b.driven:
+                if (d.kind, d.dof) in seen:
+                    raise ValueError(f"body {b.number}: dof {d.dof} driven twice ({d.kind})")
+                seen.add((d.kind, d.dof))
+        for r in self.see_rules:
+            if r.behav not in self.laws:
+                raise ValueError(f"see rule {r}: contact law {r.behav!r} is not defined (add_law)")
+        used = {(c.kind, c.color) for b in self.bodies for c in b.contactors}
+        covered = {(r.cdtac, r.cdcol) for r in self.see_rules} | \
+                  {(r.antac, r.ancol) for r in self.see_rules}
+        for kind, color in sorted(used - covered):
+            warns.append(f"no see rule mentions {kind}/{color}: those contactors never interact")
+        names = [r.behav for r in self.see_rules]
+        for name in self.laws:
+            if name not in names:
+                warns.append(f"contact law {name!r} is used by no see rule")
+        return warns
+
+    # -- text of each file --
+    def bodies_text(self):
+        out = []
+        for b in self.bodies:
+            av, gy = b.radii()
+            out += ["$bdyty", f" {b.model}{b.number:7d}", "$blmty",
+                    f" PLAIN      1  behav  {b.material}  avrd={e14(av, 'E')}  gyrd={e14(gy, 'E')}",
+                    "$nodty",
+                    " NO3xx      1" + " " * 16 + f"coo1={e14(b.coor[0], 'E')}  coo2={e14(b.coor[1], 'E')}"
+                    f"  coo3={e14(b.coor[2], 'E')}  ",
+                    "$tacty" + " " * 66]
+            for rank, c in enumerate(b.contactors, start=1):
+                out += c.lines(rank)
+            out.append("$$$$$$")
+        out.append("      ")
+        return "\n".join(out) + "\n"
+
+    def bulk_behav_text(self):
+        out = ["! File BEHAVIOUR (written by fracas_tools)",
+               "",
+               "! '$gravy': gravity components at columns 25-38, 46-59, 67-80.",
+               "! '$behav': material nickname (columns 2-6), bulk law (9-38),",
+               "!           density 'Umas=' value at columns 46-59.",
+               "!",
+               "",
+               " " * 72,
+               "$gravy  ",
+               " " * 19 + f"grv1={e14(self.gravity[0])}  grv2={e14(self.gravity[1])}"
+               f"  grv3={e14(self.gravity[2])}"]
+        for m in self.materials.values():
+            out += ["$behav  lawty", f" {m.name}  {m.law.ljust(30)}  Umas={e14(m.density)}"]
+        out.append("      ")
+        return "\n".join(out) + "\n"
+
+    def tact_behav_text(self):
+        out = [""]
+        for law in self.laws.values():
+            out += ["$behav "] + law.lines() + ["      "]
+        for r in self.see_rules:
+            out += r.lines() + ["      "]
+        out.append("      ")
+        return "\n".join(out) + "\n"
+
+    def drv_dof_text(self):
+        out = ["! DOF"]
+        for b in self.bodies:
+            if not b.driven:
+                continue
+            out += ["$bdyty", f" {b.model}{b.number:7d}", "$nodty", " NO3xx      1",
+                    "$dofty  numbr [CT......+......AMP..*..cos.(..OMEGA.*.time.+.PHI..)]...*..."
+                    "[RAMPI.....+.....RAMP.*.time]"]
+            out += [d.line() for d in b.driven]
+            out += ["$$$$$$", ""]
+        out.append("      ")
+        return "\n".join(out) + "\n"
+
+    def dof_ini_text(self):
+        out = ["", "! DOF", "", _steps_line(self.dof_step, self.dof_time), "", _HEADER_RULE]
+        for b in self.bodies:
+            if not (np.any(b.x0 != 0.0) or np.any(b.v0 != 0.0)):
+                continue
+            x, v = b.x0, b.v0
+            out += ["$bdyty", f" {b.model}  {b.number:7d}", "$nodty",
+                    " NO3xx      1" + " " * 16 + f"X(1)={e14(x[0])}  X(2)={e14(x[1])}  X(3)={e14(x[2])}",
+                    " " * 29 + f"V(1)={e14(v[0])}  V(2)={e14(v[1])}  V(3)={e14(v[2])}",
+                    "$$$$$$"]
+        out.append("      ")
+        return "\n".join(out) + "\n"
+
+    def vloc_rloc_ini_text(self):
+        out = ["", "! Vloc_Rloc", "", _steps_line(self.dof_step, self.dof_time), "", _HEADER_RULE,
+               "      "]
+        return "\n".join(out) + "\n"
+
+    def command_text(self):
+        return "\n".join(self.run.lines()) + "\n"
+
+    def write(self, case_dir, command=None):
+        """Write case_dir/DATBOX/{BODIES.DAT, BULK_BEHAV.DAT, TACT_BEHAV.DAT,
+        DRV_DOF.DAT, DOF.INI, Vloc_Rloc.INI, COMMAND.DAT} and the evolution files.
+        COMMAND.DAT is written when run settings exist (command=None) or always
+        (command=True, an error if time_step/number_of_steps are missing) or
+        never (command=False). Returns the DATBOX path."""
+        for w in self.check():
+            warnings.warn(w, stacklevel=2)
+        if command is None:
+            command = not self.run.is_empty()
+        if command:
+            self.run.check()
+        datbox = Path(case_dir) / "DATBOX"
+        datbox.mkdir(parents=True, exist_ok=True)
+        files = {"BODIES.DAT": self.bodies_text(), "BULK_BEHAV.DAT": self.bulk_behav_text(),
+                 "TACT_BEHAV.DAT": self.tact_behav_text(), "DRV_DOF.DAT": self.drv_dof_text(),
+                 "DOF.INI": self.dof_ini_text(), "Vloc_Rloc.INI": self.vloc_rloc_ini_text()}
+        if command:
+            files["COMMAND.DAT"] = self.command_text()
+        for b in self.bodies:
+            for d in b.driven:
+                if d.evolution is None:
+                    continue
+                if getattr(d, "evolution_text", None):
+                    files[d.evolution] = d.evolution_text
+                elif d.evolution_data is not None:
+                    files[d.evolution] = "".join("%14.7e %14.7e\n" % (t, y)
+                                                 for t, y in d.evolution_data)
+                elif not (datbox / d.evolution).exists():
+                    warnings.warn(f"body {b.number}: evolution file {d.evolution} has no data "
+                                  f"and does not exist in {datbox}", stacklevel=2)
+        for name, text in files.items():
+            with open(datbox / name, "w", newline="\n") as f:
+                f.write(text)
+        if not command:
+            warnings.warn("no run settings: COMMAND.DAT not written "
+                          "(case.run.set(time_step=..., number_of_steps=...))", stacklevel=2)
+        return datbox
+
+    # -- reading --
+    @classmethod
+    def read(cls, case_dir):
+        """Read case_dir/DATBOX back into a Case (see fracas_tools.datbox.read_case)."""
+        from .datbox import read_case
+        return read_case(case_dir)
+
+    # -- summaries --
+    def body_kinds(self):
+        """Per body, the set of its contactor kinds."""
+        return [{c.kind for c in b.contactors} for b in self.bodies]
+
+    def summary(self):
+        kinds = {}
+        for b in self.bodies:
+            k = "+".join(sorted({c.kind for c in b.contactors}))
+            kinds[k] = kinds.get(k, 0) + 1
+        lines = [f"{len(self.bodies)} bodies: " + ", ".join(f"{n} {k}" for k, n in kinds.items()),
+                 f"gravity: {tuple(float(g) for g in self.gravity)}",
+                 "materials: " + ", ".join(f"{m.name} ({m.law}, {m.density:g})"
+                                           for m in self.materials.values()),
+                 "laws: " + ", ".join(f"{l.name} {l.law} " +
+                                      " ".join(f"{k}={v:g}" for k, v in l.params.items())
+                                      for l in self.laws.values()),
+                 f"see rules: {len(self.see_rules)}",
+                 f"driven bodies: {sum(1 for b in self.bodies if b.driven)}",
+                 f"bodies with an initial state: "
+                 f"{sum(1 for b in self.bodies if np.any(b.x0 != 0) or np.any(b.v0 != 0))}",
+                 "run: " + (", ".join(f"{k}={v}" for k, v in self.run.values.items()) or "(none)")]
+        return "\n".join(lines)
+
+    def __repr__(self):
+        return (f"Case({len(self.bodies)} bodies, {len(self.materials)} materials, "
+                f"{len(self.laws)} laws, {len(self.see_rules)} see rules)")
+
+
+#: Alias: a Scene is a Case.
+Scene = Case
