@@ -1,0 +1,295 @@
+!> DATBOX/COMMAND.DAT reader: Fracas's own run-control deck, one
+!> "keyword value" per line (or "keyword = value"), keywords case-insensitive,
+!> '!' or '#' start a comment. The same parser serves the driver's
+!> "--set keyword=value" through apply_command_setting.
+module fracas_read_command
+  use fracas_kinds, only: wp
+  use fracas_errors, only: input_error
+  use fracas_deck, only: run_control_t
+  use fracas_datbox_text, only: text_file_t, load_text, parse_real, parse_int, lower, itoa, rtoa
+  implicit none
+  private
+  public :: read_command, apply_command_setting, check_run_control, command_keywords
+
+  integer, parameter :: n_keys = 16
+  character(len=21), parameter :: keys(n_keys) = [character(len=21) :: &
+    'time_step', 'number_of_steps', 'final_time', 'theta', 'detection_frequency', &
+    'nlgs_check', 'nlgs_tolerance', 'nlgs_relaxation', 'nlgs_sweeps_per_check', &
+    'nlgs_max_checks', 'nlgs_order', 'nlgs_seed', 'output_dof_every', 'output_vtk_every', &
+    'output_hdf5_every', 'progress_every']
+  integer, parameter :: k_time_step = 1, k_number_of_steps = 2, k_final_time = 3
+
+contains
+
+  !> Comma separated list of the keywords.
+  function command_keywords() result(s)
+    character(len=:), allocatable :: s
+    integer :: k
+    s = ''
+    do k = 1, n_keys
+      if (k > 1) s = s//', '
+      s = s//trim(keys(k))
+    end do
+  end function command_keywords
+
+  !> Read PATH into RUN (starting from the defaults of run_control_t), then
+  !> check_run_control.
+  subroutine read_command(path, run)
+    character(len=*), intent(in) :: path
+    type(run_control_t), intent(out) :: run
+    type(text_file_t) :: tf
+    integer :: i, key
+    integer :: seen(n_keys)
+
+    call load_text(path, tf, keep_comments=.true.)
+    seen = 0
+    do i = 1, tf%n
+      call apply_line(run, tf%lines(i)%text, path, tf%lines(i)%src%line, key)
+      if (key == 0) cycle
+      if (seen(key) > 0) call input_error(path, tf%lines(i)%src%line, first_col(tf%lines(i)%text), &
+                                          "keyword '"//trim(keys(key))//"' is given twice (first at line " &
+                                          //itoa(seen(key))//')')
+      if (key == k_number_of_steps .and. seen(k_final_time) > 0 .or. key == k_final_time .and. &
+          seen(k_number_of_steps) > 0) &
+        call input_error(path, tf%lines(i)%src%line, first_col(tf%lines(i)%text), &
+                         'give either number_of_steps or final_time, not both (the other is at line ' &
+                         //itoa(max(seen(k_final_time), seen(k_number_of_steps)))//')')
+      seen(key) = tf%lines(i)%src%line
+    end do
+    call check_run_control(run, path)
+  end subroutine read_command
+
+  !> Apply one "keyword=value" (or "keyword value") setting, e.g. from the
+  !> command line; ORIGIN names it in messages (e.g. '--set'). Setting
+  !> number_of_steps drops final_time and the other way round.
+  subroutine apply_command_setting(run, text, origin)
+    type(run_control_t), intent(inout) :: run
+    character(len=*), intent(in) :: text, origin
+    integer :: key
+    call apply_line(run, text, origin, 0, key)
+    if (key == 0) call input_error(origin, 0, 0, "expected 'keyword=value', found '"//trim(text)//"'")
+  end subroutine apply_command_setting
+
+  !> Checks that need the whole deck: time_step given, and number_of_steps or
+  !> final_time. With final_time, number_of_steps = nint(final_time/time_step).
+  subroutine check_run_control(run, origin)
+    type(run_control_t), intent(inout) :: run
+    character(len=*), intent(in) :: origin
+    if (run%time_step <= 0.0_wp) call input_error(origin, 0, 0, &
+                                                 "keyword 'time_step' is required (the time step, a real > 0)")
+    if (run%final_time > 0.0_wp) then
+      run%number_of_steps = max(1, nint(run%final_time/run%time_step))
+    else if (run%number_of_steps <= 0) then
+      call input_error(origin, 0, 0, "one of 'number_of_steps' (an integer >= 1) or 'final_time' (a real > 0) " &
+                       //'is required')
+    end if
+  end subroutine check_run_control
+
+  integer function first_col(text)
+    character(len=*), intent(in) :: text
+    first_col = verify(text, ' ')
+    if (first_col == 0) first_col = 1
+  end function first_col
+
+  !> Parse one line: KEY returns the keyword index, 0 for a blank/comment line.
+  subroutine apply_line(run, text, origin, line, key)
+    type(run_control_t), intent(inout) :: run
+    character(len=*), intent(in) :: text, origin
+    integer, intent(in) :: line
+    integer, intent(out) :: key
+    character(len=:), allocatable :: s, word, value
+    integer :: n, a, b, c, vcol, k
+
+    key = 0
+    s = text
+    ! Comments: '!' or '#' to the end of the line.
+    n = scan(s, '!#')
+    if (n > 0) s = s(1:n - 1)
+    if (len_trim(s) == 0) return
+    a = verify(s, ' ')
+    b = a
+    do while (b <= len_trim(s))
+      if (s(b:b) == ' ' .or. s(b:b) == '=') exit
+      b = b + 1
+    end do
+    word = lower(s(a:b - 1))
+    do k = 1, n_keys
+      if (word == trim(keys(k))) key = k
+    end do
+    if (key == 0) call input_error(origin, line, a, "unknown keyword '"//s(a:b - 1)//"'"//suggestion(word))
+    ! Value: after blanks and an optional '='.
+    c = b
+    do while (c <= len_trim(s))
+      if (s(c:c) /= ' ') exit
+      c = c + 1
+    end do
+    if (c <= len_trim(s)) then
+      if (s(c:c) == '=') c = c + 1
+    end if
+    do while (c <= len_trim(s))
+      if (s(c:c) /= ' ') exit
+      c = c + 1
+    end do
+    vcol = c
+    value = trim(s(min(c, len(s) + 1):))
+    if (len(value) == 0) call input_error(origin, line, vcol, "keyword '"//trim(keys(key))//"' needs a value: " &
+                                          //expected(key))
+    if (index(value, ' ') > 0) call input_error(origin, line, vcol + index(value, ' '), &
+                                                "one value expected after '"//trim(keys(key))//"', found '"//value//"'")
+    call set_value(run, key, value, origin, line, vcol)
+  end subroutine apply_line
+
+  !> What a keyword takes, for messages.
+  function expected(key) result(s)
+    integer, intent(in) :: key
+    character(len=:), allocatable :: s
+    select case (trim(keys(key)))
+    case ('time_step', 'final_time', 'nlgs_tolerance')
+      s = 'a real > 0'
+    case ('theta')
+      s = 'a real in [0.5, 1]'
+    case ('nlgs_relaxation')
+      s = 'a real in (0, 2)'
+    case ('number_of_steps', 'detection_frequency', 'nlgs_sweeps_per_check', 'nlgs_max_checks')
+      s = 'an integer >= 1'
+    case ('nlgs_seed')
+      s = 'an integer'
+    case ('nlgs_check')
+      s = 'one of Quad, Maxm, QM/16'
+    case ('nlgs_order')
+      s = 'one of stored, reversed, shuffled'
+    case default
+      s = 'an integer >= 0'
+    end select
+  end function expected
+
+  subroutine set_value(run, key, value, origin, line, col)
+    type(run_control_t), intent(inout) :: run
+    integer, intent(in) :: key, line, col
+    character(len=*), intent(in) :: value, origin
+    real(wp) :: x
+    integer :: i
+    character(len=:), allocatable :: lv
+
+    lv = lower(value)
+    select case (trim(keys(key)))
+    case ('time_step')
+      run%time_step = real_in(0.0_wp, huge(1.0_wp), .false.)
+    case ('number_of_steps')
+      run%number_of_steps = int_min(1)
+      run%final_time = -1.0_wp
+    case ('final_time')
+      run%final_time = real_in(0.0_wp, huge(1.0_wp), .false.)
+      run%number_of_steps = 0
+    case ('theta')
+      run%theta = real_in(0.5_wp, 1.0_wp, .true.)
+    case ('detection_frequency')
+      run%detection_frequency = int_min(1)
+    case ('nlgs_check')
+      select case (lv)
+      case ('quad')
+        run%nlgs_check = 'Quad '
+      case ('maxm')
+        run%nlgs_check = 'Maxm '
+      case ('qm/16')
+        run%nlgs_check = 'QM/16'
+      case default
+        call bad()
+      end select
+    case ('nlgs_tolerance')
+      run%nlgs_tolerance = real_in(0.0_wp, huge(1.0_wp), .false.)
+    case ('nlgs_relaxation')
+      run%nlgs_relaxation = real_in(0.0_wp, 2.0_wp, .false.)
+    case ('nlgs_sweeps_per_check')
+      run%nlgs_sweeps_per_check = int_min(1)
+    case ('nlgs_max_checks')
+      run%nlgs_max_checks = int_min(1)
+    case ('nlgs_order')
+      select case (lv)
+      case ('stored', 'reversed', 'shuffled')
+        run%nlgs_order = lv
+      case default
+        call bad()
+      end select
+    case ('nlgs_seed')
+      run%nlgs_seed = int_min(-huge(1))
+    case ('output_dof_every')
+      run%output_dof_every = int_min(0)
+    case ('output_vtk_every')
+      run%output_vtk_every = int_min(0)
+    case ('output_hdf5_every')
+      run%output_hdf5_every = int_min(0)
+    case ('progress_every')
+      run%progress_every = int_min(0)
+    end select
+
+  contains
+
+    subroutine bad()
+      call input_error(origin, line, col, "bad value '"//value//"' for '"//trim(keys(key))//"': expected " &
+                       //expected(key))
+    end subroutine bad
+
+    !> A real in [lo, hi] (closed) or (lo, hi) (open).
+    real(wp) function real_in(lo, hi, closed)
+      real(wp), intent(in) :: lo, hi
+      logical, intent(in) :: closed
+      character(len=:), allocatable :: msg
+      logical :: ok
+      if (.not. parse_real(value, x, msg)) call bad()
+      if (closed) then
+        ok = x >= lo .and. x <= hi
+      else
+        ok = x > lo .and. x < hi
+      end if
+      if (.not. ok) call input_error(origin, line, col, "value "//rtoa(x)//" out of range for '"// &
+                                     trim(keys(key))//"': expected "//expected(key))
+      real_in = x
+    end function real_in
+
+    integer function int_min(lo)
+      integer, intent(in) :: lo
+      character(len=:), allocatable :: msg
+      if (.not. parse_int(value, i, msg)) call bad()
+      if (i < lo) call input_error(origin, line, col, "value "//itoa(i)//" out of range for '"// &
+                                   trim(keys(key))//"': expected "//expected(key))
+      int_min = i
+    end function int_min
+  end subroutine set_value
+
+  !> ' (did you mean 'x'?)' for the closest keyword, or the list of keywords.
+  function suggestion(word) result(s)
+    character(len=*), intent(in) :: word
+    character(len=:), allocatable :: s
+    integer :: k, d, best, kbest
+    best = huge(1)
+    kbest = 0
+    do k = 1, n_keys
+      d = edit_distance(word, trim(keys(k)))
+      if (d < best) then
+        best = d
+        kbest = k
+      end if
+    end do
+    if (kbest > 0 .and. best <= max(2, len(word)/3)) then
+      s = "; did you mean '"//trim(keys(kbest))//"'?"
+    else
+      s = ' (known keywords: '//command_keywords()//')'
+    end if
+  end function suggestion
+
+  !> Levenshtein distance.
+  pure integer function edit_distance(a, b) result(d)
+    character(len=*), intent(in) :: a, b
+    integer :: prev(0:len(b)), cur(0:len(b)), i, j
+    prev = [(j, j=0, len(b))]
+    do i = 1, len(a)
+      cur(0) = i
+      do j = 1, len(b)
+        cur(j) = min(prev(j) + 1, cur(j - 1) + 1, prev(j - 1) + merge(0, 1, a(i:i) == b(j:j)))
+      end do
+      prev = cur
+    end do
+    d = prev(len(b))
+  end function edit_distance
+end module fracas_read_command

@@ -1,0 +1,197 @@
+!> DRV_DOF.DAT reader: driven velocities ('vlocy') and forces ('force') per
+!> body and dof, either as CT, AMP, OMEGA, PHI, RAMPI, RAMP (columns 15-28,
+!> 30-43, 45-58, 60-73, 75-88, 90-103) or as 'evolution FILE', a two-column
+!> (time, value) file in the DATBOX folder.
+module fracas_read_drv_dof
+  use fracas_kinds, only: wp
+  use fracas_deck, only: driven_dof_input_t
+  use fracas_errors, only: input_error
+  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, &
+                                keyword_of, is_data, get_real, get_int, get_word, itoa, rtoa, &
+                                parse_real, file_exists
+  implicit none
+  private
+  public :: read_drv_dof, read_evolution_file
+
+  integer, parameter :: value_col(6) = [15, 30, 45, 60, 75, 90]
+  character(len=5), parameter :: value_name(6) = ['CT   ', 'AMP  ', 'OMEGA', 'PHI  ', 'RAMPI', 'RAMP ']
+
+contains
+
+  !> Read PATH (DRV_DOF.DAT); evolution files are looked up in DATBOX_DIR.
+  !> Body numbers must be in 1..NBODIES (no check if NBODIES < 0).
+  subroutine read_drv_dof(path, datbox_dir, nbodies, driven)
+    character(len=*), intent(in) :: path, datbox_dir
+    integer, intent(in) :: nbodies
+    type(driven_dof_input_t), allocatable, intent(out) :: driven(:)
+    type(text_file_t) :: tf
+    integer :: i, n, body, k
+    character(len=5) :: kw
+    character(len=:), allocatable :: model
+
+    call load_text(path, tf)
+    ! Every data line that is not a body or node line is one driven dof.
+    n = 0
+    do i = 1, tf%n
+      if (keyword_of(tf%lines(i)) == 'dofty') then
+        k = i + 1
+        do while (is_data(tf, k))
+          n = n + 1
+          k = k + 1
+        end do
+      end if
+    end do
+    allocate (driven(n))
+    n = 0
+    body = 0
+    i = 1
+    do while (i <= tf%n)
+      kw = keyword_of(tf%lines(i))
+      select case (kw)
+      case ('bdyty')
+        if (.not. is_data(tf, i + 1)) call line_error(tf%lines(i), 1, "'$bdyty' must be followed by a body line (' RBDY2  number')")
+        associate (ln => tf%lines(i + 1))
+          model = get_word(ln, 2, 6, 'body model')
+          if (model /= 'RBDY2') call line_error(ln, 2, "unknown body model '"//model//"' (supported: RBDY2)")
+          body = get_int(ln, 9, 15, 'body number')
+          if (nbodies >= 0 .and. (body < 1 .or. body > nbodies)) &
+            call line_error(ln, 9, 'body '//itoa(body)//' does not exist (BODIES.DAT has '//itoa(nbodies)//' bodies)')
+        end associate
+        i = i + 2
+      case ('nodty')
+        if (body == 0) call line_error(tf%lines(i), 1, "'$nodty' before any '$bdyty'")
+        if (is_data(tf, i + 1)) then
+          if (get_word(tf%lines(i + 1), 2, 6, 'node type') /= 'NO3xx') &
+            call line_error(tf%lines(i + 1), 2, "unknown node type '"//trim(field(tf%lines(i + 1), 2, 6))// &
+                            "' for RBDY2 (supported: NO3xx)")
+          i = i + 1
+        end if
+        i = i + 1
+      case ('dofty')
+        if (body == 0) call line_error(tf%lines(i), 1, "'$dofty' before any '$bdyty'")
+        i = i + 1
+        do while (is_data(tf, i))
+          n = n + 1
+          call read_dof_line(tf%lines(i), body, datbox_dir, driven(n))
+          do k = 1, n - 1
+            if (driven(k)%body == body .and. driven(k)%dof == driven(n)%dof .and. driven(k)%kind == driven(n)%kind) &
+              call line_error(tf%lines(i), 9, trim(driven(n)%kind)//' of dof '//itoa(driven(n)%dof)//' of body ' &
+                              //itoa(body)//' is already given at line '//itoa(driven(k)%src%line))
+          end do
+          i = i + 1
+        end do
+      case ('$$$$$')
+        body = 0
+        i = i + 1
+      case default
+        if (tf%lines(i)%text(1:1) == '$') then
+          call line_error(tf%lines(i), 1, "unknown keyword '"//trim(field(tf%lines(i), 1, 6))// &
+                          "' (expected $bdyty, $nodty, $dofty or $$$$$$)")
+        else
+          call line_error(tf%lines(i), 1, "unexpected line (driven dof lines follow '$dofty'): '"// &
+                          trim(field(tf%lines(i), 1, 40))//"'")
+        end if
+      end select
+    end do
+  end subroutine read_drv_dof
+
+  subroutine read_dof_line(ln, body, datbox_dir, d)
+    type(text_line_t), intent(in) :: ln
+    integer, intent(in) :: body
+    character(len=*), intent(in) :: datbox_dir
+    type(driven_dof_input_t), intent(out) :: d
+    real(wp) :: v(6)
+    integer :: k
+    character(len=:), allocatable :: fname
+
+    d%src = ln%src
+    d%body = body
+    d%kind = get_word(ln, 2, 6, "driven dof kind ('vlocy' or 'force')")
+    if (d%kind /= 'vlocy' .and. d%kind /= 'force') &
+      call line_error(ln, 2, "unknown driven dof kind '"//trim(d%kind)//"' (expected vlocy or force)")
+    d%dof = get_int(ln, 9, 13, 'dof index')
+    if (d%dof < 1 .or. d%dof > 3) call line_error(ln, 9, 'dof index must be 1, 2 or 3 for RBDY2 (x, y, rotation), found ' &
+                                                  //itoa(d%dof))
+    if (adjustl(field(ln, 15, 23)) == 'evolution') then
+      d%evolution = .true.
+      fname = get_word(ln, 25, max(64, len(ln%text)), 'evolution file name')
+      d%evolution_file = fname
+      if (.not. file_exists(datbox_dir//'/'//fname)) &
+        call line_error(ln, 25, "evolution file '"//datbox_dir//'/'//fname//"' not found")
+      call read_evolution_file(datbox_dir//'/'//fname, d%evo_t, d%evo_v)
+    else
+      do k = 1, 6
+        v(k) = get_real(ln, value_col(k), value_col(k) + 13, trim(value_name(k)))
+      end do
+      d%ct = v(1)
+      d%amp = v(2)
+      d%omega = v(3)
+      d%phi = v(4)
+      d%rampi = v(5)
+      d%ramp = v(6)
+    end if
+  end subroutine read_dof_line
+
+  !> A free-format two-column file (time, value); '!' and '#' start comments.
+  !> Times must be strictly increasing; at least two points.
+  subroutine read_evolution_file(path, t, v)
+    character(len=*), intent(in) :: path
+    real(wp), allocatable, intent(out) :: t(:), v(:)
+    type(text_file_t) :: tf
+    integer :: i, n, ntok, c1(3), c2(3), k
+    character(len=:), allocatable :: s, msg
+    real(wp) :: x(2)
+
+    call load_text(path, tf, keep_comments=.true.)
+    allocate (t(tf%n), v(tf%n))
+    n = 0
+    do i = 1, tf%n
+      s = tf%lines(i)%text
+      k = scan(s, '!#')
+      if (k > 0) s = s(1:k - 1)
+      if (len_trim(s) == 0) cycle
+      call tokens(s, ntok, c1, c2)
+      if (ntok /= 2) call line_error(tf%lines(i), 1, 'expected two numbers (time value), found ' &
+                                     //itoa(ntok)//merge(' or more', '        ', ntok > 2))
+      do k = 1, 2
+        if (.not. parse_real(s(c1(k):c2(k)), x(k), msg)) &
+          call line_error(tf%lines(i), c1(k), 'expected a real number ('//trim(merge('time ', 'value', k == 1))// &
+                          '), '//msg)
+      end do
+      if (n > 0) then
+        if (x(1) <= t(n)) call line_error(tf%lines(i), c1(1), 'times must be strictly increasing: ' &
+                                          //rtoa(x(1))//' follows '//rtoa(t(n)))
+      end if
+      n = n + 1
+      t(n) = x(1)
+      v(n) = x(2)
+    end do
+    if (n < 2) call input_error(path, 0, 0, 'an evolution file needs at least two (time, value) lines, found ' &
+                                //itoa(n))
+    t = t(1:n)
+    v = v(1:n)
+  end subroutine read_evolution_file
+
+  !> Start and end columns of up to 3 blank/comma separated tokens of s
+  !> (ntok counts all of them).
+  subroutine tokens(s, ntok, c1, c2)
+    character(len=*), intent(in) :: s
+    integer, intent(out) :: ntok, c1(3), c2(3)
+    integer :: j
+    logical :: in_tok, sep
+    ntok = 0
+    c1 = 0
+    c2 = 0
+    in_tok = .false.
+    do j = 1, len(s)
+      sep = s(j:j) == ' ' .or. s(j:j) == ','
+      if (.not. sep .and. .not. in_tok) then
+        ntok = ntok + 1
+        if (ntok <= 3) c1(ntok) = j
+      end if
+      if (sep .and. in_tok .and. ntok <= 3) c2(ntok) = j - 1
+      in_tok = .not. sep
+    end do
+    if (in_tok .and. ntok <= 3) c2(ntok) = len(s)
+  end subroutine tokens
+end module fracas_read_drv_dof

@@ -1,0 +1,187 @@
+!> OUTBOX text writers in LMGC90's layout: DOF.OUT.n and Vloc_Rloc.OUT.n
+!> (values in D14.7, e.g. 0.1234567D+01). A file is written to PATH.part and
+!> renamed to PATH once complete, so an interrupted run never leaves a
+!> complete-looking file.
+module fracas_write_outbox
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+  use fracas_kinds, only: wp
+  use fracas_errors, only: fatal
+  use fracas_deck, only: dof_record_t, contact_record_t
+  use fracas_read_vloc_rloc, only: vloc_layout_t, vloc_layout, internals_per_line
+  implicit none
+  private
+  public :: write_dof_file, write_vloc_rloc_file
+
+  character(len=*), parameter :: rule = '!-----------------------------------------------------------------------'
+  !> Names of the 2D cohesive internals (L, ut, un, beta, TPSini) in the comment
+  !> line before the internal values, padded as LMGC90 pads it.
+  character(len=*), parameter :: czm_names = 'taille_ele     saut_de_ut     saut_de_un     beta           TPSini'
+  integer, parameter :: comment_len = 284
+  character(len=*), parameter :: fmt_steps = '(a6,i9,14x,a5,d14.7)'
+  character(len=*), parameter :: fmt_3 = '(29x,3(a5,d14.7,:,2x))'
+
+  interface
+    function c_rename(old, new) bind(c, name='rename') result(status)
+      import :: c_int, c_char
+      character(kind=c_char), intent(in) :: old(*), new(*)
+      integer(c_int) :: status
+    end function c_rename
+  end interface
+
+contains
+
+  !> DOF.OUT.n: header then one block per record (body number, X(1..3), V(1..3)).
+  subroutine write_dof_file(path, step, time, records)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: step
+    real(wp), intent(in) :: time
+    type(dof_record_t), intent(in) :: records(:)
+    integer :: u, k
+
+    u = open_part(path)
+    write (u, '(a)') '     '
+    write (u, '(a)') '! DOF'
+    write (u, '(a)') '     '
+    write (u, fmt_steps) '$steps', step, 'time=', time
+    write (u, '(a)') ' '
+    write (u, '(a)') rule
+    do k = 1, size(records)
+      associate (r => records(k))
+        write (u, '(a)') '$bdyty'
+        write (u, '(1x,a5,i9)') r%model, r%body
+        write (u, '(a)') '$nodty'
+        write (u, '(1x,a5,2x,i5,16x,3(a5,d14.7,:,2x))') 'NO3xx', 1, 'X(1)=', r%x(1), 'X(2)=', r%x(2), 'X(3)=', r%x(3)
+        write (u, fmt_3) 'V(1)=', r%v(1), 'V(2)=', r%v(2), 'V(3)=', r%v(3)
+        write (u, '(a)') '$$$$$$'
+        write (u, '(a)') '      '
+      end associate
+    end do
+    write (u, '(a)') rule
+    write (u, '(a)') rule
+    call close_part(u, path)
+  end subroutine write_dof_file
+
+  !> Vloc_Rloc.OUT.n: header then one $icdan block per record, with the id
+  !> line layout of its interaction type, n/coo lines if has_geometry and the
+  !> internal values (after a '#' comment line) if any.
+  subroutine write_vloc_rloc_file(path, step, time, records)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: step
+    real(wp), intent(in) :: time
+    type(contact_record_t), intent(in) :: records(:)
+    integer :: u, k, j, n
+    type(vloc_layout_t) :: lay
+
+    u = open_part(path)
+    write (u, '(a)') '     '
+    write (u, '(a)') '! Vloc_Rloc'
+    write (u, '(a)') '      '
+    write (u, fmt_steps) '$steps', step, 'time=', time
+    write (u, '(a)') ' '
+    write (u, '(a)') rule
+    do k = 1, size(records)
+      associate (r => records(k))
+        lay = vloc_layout(r%inter)
+        write (u, '(a6,2x,a5,i9)') '$icdan', r%inter, r%number
+        write (u, '(a)') lay%header(1:lay%header_len)
+        write (u, '(a)') id_line(r, lay)
+        write (u, fmt_3) 'rlt/H', r%rlt, 'rln/H', r%rln, lay%rls_label, 0.0_wp
+        write (u, fmt_3) 'vlt =', r%vlt, 'vln =', r%vln, 'vls =', 0.0_wp
+        write (u, fmt_3) 'gapTT', r%gap
+        if (r%has_geometry) then
+          write (u, fmt_3) 'n(1)=', r%normal(1), 'n(2)=', r%normal(2), 'n(3)=', 0.0_wp
+          write (u, fmt_3) 'coo1=', r%coor(1), 'coo2=', r%coor(2), 'coo3=', 0.0_wp
+        end if
+        if (allocated(r%internals)) then
+          n = size(r%internals)
+          if (n > 0) then
+            write (u, '(a)') '#'//internal_comment(n)
+            do j = 1, n, internals_per_line
+              write (u, '(*(1x,d14.7))') r%internals(j:min(n, j + internals_per_line - 1))
+            end do
+          end if
+        end if
+        write (u, '(a)') ' '
+      end associate
+    end do
+    call close_part(u, path)
+  end subroutine write_vloc_rloc_file
+
+  !> The id line of a record, fields placed at the columns of its layout.
+  function id_line(r, lay) result(s)
+    type(contact_record_t), intent(in) :: r
+    type(vloc_layout_t), intent(in) :: lay
+    character(len=lay%width) :: s
+    s = ''
+    call put(r%cdbdy, lay%cdbdy)
+    call put_int(r%icdbdy, lay%icdbdy, 5)
+    call put(r%cdtac, lay%cdtac)
+    call put_int(r%icdtac, lay%icdtac, 5)
+    if (lay%cdver > 0) then
+      call put('CDVER', lay%cdver_label)
+      call put_int(r%cdver, lay%cdver, 5)
+    end if
+    call put(r%behav, lay%behav)
+    call put(r%anbdy, lay%anbdy)
+    call put_int(r%ianbdy, lay%ianbdy, 5)
+    call put(r%antac, lay%antac)
+    call put_int(r%iantac, lay%iantac, 5)
+    if (lay%anseg > 0) then
+      call put('ANSEG', lay%anseg_label)
+      call put_int(r%anseg, lay%anseg, 5)
+    end if
+    call put(r%status, lay%status)
+    call put_int(r%iadj, lay%iadj, lay%w_iadj)
+
+  contains
+
+    subroutine put(word, col)
+      character(len=*), intent(in) :: word
+      integer, intent(in) :: col
+      s(col:col + 4) = word
+    end subroutine put
+
+    subroutine put_int(i, col, w)
+      integer, intent(in) :: i, col, w
+      character(len=16) :: f
+      write (f, '(a,i0,a)') '(i', w, ')'
+      write (s(col:col + w - 1), f) i
+    end subroutine put_int
+  end function id_line
+
+  !> Names of n internal values in 15-character columns, padded to comment_len.
+  function internal_comment(n) result(s)
+    integer, intent(in) :: n
+    character(len=comment_len) :: s
+    integer :: k
+    if (n == 5) then
+      s = czm_names
+    else
+      s = ''
+      do k = 1, min(n, 18)   ! 18 names of 15 characters fit in comment_len
+        write (s(15*(k - 1) + 1:15*k), '(a,i0,a)') 'internal(', k, ')'
+      end do
+    end if
+  end function internal_comment
+
+  integer function open_part(path) result(u)
+    character(len=*), intent(in) :: path
+    integer :: ios
+    character(len=256) :: iomsg
+    open (newunit=u, file=path//'.part', status='replace', action='write', form='formatted', &
+          iostat=ios, iomsg=iomsg)
+    if (ios /= 0) call fatal('cannot write '//path//'.part: '//trim(iomsg))
+  end function open_part
+
+  !> Close the unit and move PATH.part to PATH.
+  subroutine close_part(u, path)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: path
+    integer :: ios
+    character(len=256) :: iomsg
+    close (u, iostat=ios, iomsg=iomsg)
+    if (ios /= 0) call fatal('cannot close '//path//'.part: '//trim(iomsg))
+    if (c_rename(path//'.part'//c_null_char, path//c_null_char) /= 0) &
+      call fatal('cannot rename '//path//'.part to '//path)
+  end subroutine close_part
+end module fracas_write_outbox
