@@ -8,10 +8,13 @@ module fracas_datbox_text
   use fracas_kinds, only: wp
   use fracas_errors, only: input_error
   use fracas_deck, only: source_t
+  use fracas_files, only: file_exists
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, ieee_set_halting_mode, &
+                                           ieee_set_flag
   implicit none
   private
-  public :: text_line_t, text_file_t, load_text, file_exists, line_error, &
+  public :: text_line_t, text_file_t, load_text, line_error, &
             field, is_blank, keyword_of, is_data, get_real, get_int, get_word, &
             parse_real, parse_int, lower, upper, itoa, rtoa, cols, get_steps
 
@@ -29,11 +32,6 @@ module fracas_datbox_text
   end type text_file_t
 
 contains
-
-  logical function file_exists(path)
-    character(len=*), intent(in) :: path
-    inquire (file=path, exist=file_exists)
-  end function file_exists
 
   !> Load PATH. With keep_comments, '!'/'#' lines are kept (free-format files
   !> handle their own comments); blank lines are always dropped.
@@ -253,7 +251,7 @@ contains
     logical :: ok
     character(len=:), allocatable :: s, low
     integer :: i, n, ndig, ios
-    logical :: exp_seen
+    logical :: exp_seen, halt
 
     ok = .false.
     x = 0.0_wp
@@ -319,7 +317,12 @@ contains
     if (i <= n) return
     ! Conversion (a bare-sign exponent needs an explicit letter for list input).
     if (exp_seen) call insert_exponent_letter(s)
+    ! A too large value gives Inf, not a floating-point trap (debug builds trap overflow).
+    call ieee_get_halting_mode(ieee_overflow, halt)
+    call ieee_set_halting_mode(ieee_overflow, .false.)
     read (s, *, iostat=ios) x
+    call ieee_set_flag(ieee_overflow, .false.)
+    call ieee_set_halting_mode(ieee_overflow, halt)
     if (ios /= 0) then
       msg = msg//' (out of range)'
       return

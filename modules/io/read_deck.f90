@@ -9,7 +9,8 @@ module fracas_read_deck
   use fracas_kinds, only: wp
   use fracas_errors, only: input_error
   use fracas_deck, only: deck_t
-  use fracas_datbox_text, only: file_exists, itoa, rtoa
+  use fracas_files, only: file_exists, dir_exists
+  use fracas_datbox_text, only: itoa, rtoa
   use fracas_read_bodies, only: read_bodies
   use fracas_read_bulk_behav, only: read_bulk_behav
   use fracas_read_tact_behav, only: read_tact_behav
@@ -37,7 +38,7 @@ contains
     deck%case_dir = strip_slash(case_dir)
     dat = deck%case_dir//'/DATBOX'
     deck%datbox = dat
-    if (.not. file_exists(dat//'/.') .and. .not. file_exists(dat//'/BODIES.DAT')) &
+    if (.not. dir_exists(dat)) &
       call input_error(dat, 0, 0, 'DATBOX folder not found (a case directory holds DATBOX/BODIES.DAT, ...)')
 
     call read_bulk_behav(required(dat//'/BULK_BEHAV.DAT'), deck%gravity, deck%materials)

@@ -8,7 +8,8 @@ module fracas_read_drv_dof
   use fracas_errors, only: input_error
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, &
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, rtoa, &
-                                parse_real, file_exists
+                                parse_real
+  use fracas_files, only: file_exists
   implicit none
   private
   public :: read_drv_dof, read_evolution_file

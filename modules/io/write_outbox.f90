@@ -3,9 +3,9 @@
 !> renamed to PATH once complete, so an interrupted run never leaves a
 !> complete-looking file.
 module fracas_write_outbox
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal
+  use fracas_files, only: atomic_rename
   use fracas_deck, only: dof_record_t, contact_record_t
   use fracas_read_vloc_rloc, only: vloc_layout_t, vloc_layout, internals_per_line
   implicit none
@@ -19,14 +19,6 @@ module fracas_write_outbox
   integer, parameter :: comment_len = 284
   character(len=*), parameter :: fmt_steps = '(a6,i9,14x,a5,d14.7)'
   character(len=*), parameter :: fmt_3 = '(29x,3(a5,d14.7,:,2x))'
-
-  interface
-    function c_rename(old, new) bind(c, name='rename') result(status)
-      import :: c_int, c_char
-      character(kind=c_char), intent(in) :: old(*), new(*)
-      integer(c_int) :: status
-    end function c_rename
-  end interface
 
 contains
 
@@ -181,7 +173,6 @@ contains
     character(len=256) :: iomsg
     close (u, iostat=ios, iomsg=iomsg)
     if (ios /= 0) call fatal('cannot close '//path//'.part: '//trim(iomsg))
-    if (c_rename(path//'.part'//c_null_char, path//c_null_char) /= 0) &
-      call fatal('cannot rename '//path//'.part to '//path)
+    call atomic_rename(path//'.part', path)
   end subroutine close_part
 end module fracas_write_outbox
