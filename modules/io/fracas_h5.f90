@@ -575,52 +575,84 @@ contains
   subroutine wds_real1(loc, name, data, compress)
     integer(hid_t), intent(in) :: loc
     character(len=*), intent(in) :: name
-    real(wp), intent(in), target, contiguous :: data(:)
+    real(wp), intent(in), target :: data(:)
+    real(wp), allocatable, target :: tmp(:)
+    type(c_ptr) :: cp
     integer, intent(in), optional :: compress
     if (size(data) == 0) then
       call put_dataset(loc, name, t_real, 1, [0_hsize_t], c_null_ptr)
     else
-      call put_dataset(loc, name, t_real, 1, [size(data, kind=hsize_t)], c_loc(data), compress)
+      if (is_contiguous(data)) then
+        cp = c_loc(data)
+      else
+        tmp = data
+        cp = c_loc(tmp)
+      end if
+      call put_dataset(loc, name, t_real, 1, [size(data, kind=hsize_t)], cp, compress)
     end if
   end subroutine wds_real1
 
   subroutine wds_real2(loc, name, data, compress)
     integer(hid_t), intent(in) :: loc
     character(len=*), intent(in) :: name
-    real(wp), intent(in), target, contiguous :: data(:, :)
+    real(wp), intent(in), target :: data(:, :)
+    real(wp), allocatable, target :: tmp(:, :)
+    type(c_ptr) :: cp
     integer, intent(in), optional :: compress
     integer(hsize_t) :: dims(2)
     dims = shape(data, kind=hsize_t)
     if (size(data) == 0) then
       call put_dataset(loc, name, t_real, 2, dims, c_null_ptr)
     else
-      call put_dataset(loc, name, t_real, 2, dims, c_loc(data), compress)
+      if (is_contiguous(data)) then
+        cp = c_loc(data)
+      else
+        tmp = data
+        cp = c_loc(tmp)
+      end if
+      call put_dataset(loc, name, t_real, 2, dims, cp, compress)
     end if
   end subroutine wds_real2
 
   subroutine wds_int1(loc, name, data, compress)
     integer(hid_t), intent(in) :: loc
     character(len=*), intent(in) :: name
-    integer(ik), intent(in), target, contiguous :: data(:)
+    integer(ik), intent(in), target :: data(:)
+    integer(ik), allocatable, target :: tmp(:)
+    type(c_ptr) :: cp
     integer, intent(in), optional :: compress
     if (size(data) == 0) then
       call put_dataset(loc, name, t_int, 1, [0_hsize_t], c_null_ptr)
     else
-      call put_dataset(loc, name, t_int, 1, [size(data, kind=hsize_t)], c_loc(data), compress)
+      if (is_contiguous(data)) then
+        cp = c_loc(data)
+      else
+        tmp = data
+        cp = c_loc(tmp)
+      end if
+      call put_dataset(loc, name, t_int, 1, [size(data, kind=hsize_t)], cp, compress)
     end if
   end subroutine wds_int1
 
   subroutine wds_int2(loc, name, data, compress)
     integer(hid_t), intent(in) :: loc
     character(len=*), intent(in) :: name
-    integer(ik), intent(in), target, contiguous :: data(:, :)
+    integer(ik), intent(in), target :: data(:, :)
+    integer(ik), allocatable, target :: tmp(:, :)
+    type(c_ptr) :: cp
     integer, intent(in), optional :: compress
     integer(hsize_t) :: dims(2)
     dims = shape(data, kind=hsize_t)
     if (size(data) == 0) then
       call put_dataset(loc, name, t_int, 2, dims, c_null_ptr)
     else
-      call put_dataset(loc, name, t_int, 2, dims, c_loc(data), compress)
+      if (is_contiguous(data)) then
+        cp = c_loc(data)
+      else
+        tmp = data
+        cp = c_loc(tmp)
+      end if
+      call put_dataset(loc, name, t_int, 2, dims, cp, compress)
     end if
   end subroutine wds_int2
 
