@@ -49,14 +49,14 @@ contains
       if (seen(key) > 0) call input_error(path, tf%lines(i)%src%line, first_col(tf%lines(i)%text), &
                                           "keyword '"//trim(keys(key))//"' is given twice (first at line " &
                                           //itoa(seen(key))//')')
-      if (key == k_number_of_steps .and. seen(k_final_time) > 0 .or. key == k_final_time .and. &
-          seen(k_number_of_steps) > 0) &
+      if ((key == k_number_of_steps .and. seen(k_final_time) > 0) .or. &
+          (key == k_final_time .and. seen(k_number_of_steps) > 0)) &
         call input_error(path, tf%lines(i)%src%line, first_col(tf%lines(i)%text), &
                          'give either number_of_steps or final_time, not both (the other is at line ' &
                          //itoa(max(seen(k_final_time), seen(k_number_of_steps)))//')')
       seen(key) = tf%lines(i)%src%line
     end do
-    call check_run_control(run, path)
+    call check_run_control(run, path, 1)
   end subroutine read_command
 
   !> Apply one "keyword=value" (or "keyword value") setting, e.g. from the
@@ -72,15 +72,21 @@ contains
 
   !> Checks that need the whole deck: time_step given, and number_of_steps or
   !> final_time. With final_time, number_of_steps = nint(final_time/time_step).
-  subroutine check_run_control(run, origin)
+  !> A missing keyword is reported at ORIGIN:LINE:1 (LINE 1 for a file, 0 for
+  !> command-line settings, where no line is shown).
+  subroutine check_run_control(run, origin, line)
     type(run_control_t), intent(inout) :: run
     character(len=*), intent(in) :: origin
-    if (run%time_step <= 0.0_wp) call input_error(origin, 0, 0, &
-                                                 "keyword 'time_step' is required (the time step, a real > 0)")
+    integer, intent(in), optional :: line
+    integer :: l
+    l = 0
+    if (present(line)) l = line
+    if (run%time_step <= 0.0_wp) call input_error(origin, l, 1, &
+                                                 "required keyword 'time_step' is missing (the time step, a real > 0)")
     if (run%final_time > 0.0_wp) then
       run%number_of_steps = max(1, nint(run%final_time/run%time_step))
     else if (run%number_of_steps <= 0) then
-      call input_error(origin, 0, 0, "one of 'number_of_steps' (an integer >= 1) or 'final_time' (a real > 0) " &
+      call input_error(origin, l, 1, "one of 'number_of_steps' (an integer >= 1) or 'final_time' (a real > 0) " &
                        //'is required')
     end if
   end subroutine check_run_control
