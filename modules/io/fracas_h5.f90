@@ -13,6 +13,7 @@
 !> h5_close_file warns if objects of the file are still open (an id leak).
 !> Groups and files are created with link and attribute creation order tracked,
 !> so h5py lists members in the order they were written.
+!> Set FRACAS_HDF5_DEBUG=1 in the environment to see HDF5's own error stacks.
 module fracas_h5
   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_null_ptr, c_char, c_null_char, &
                                          c_size_t, c_f_pointer, c_associated
@@ -36,7 +37,7 @@ module fracas_h5
                   h5pset_link_creation_order_f, h5pset_attr_creation_order_f, &
                   H5P_DATASET_CREATE_F, H5P_GROUP_CREATE_F, H5P_FILE_CREATE_F, H5P_DEFAULT_F, &
                   H5P_CRT_ORDER_TRACKED_F, H5P_CRT_ORDER_INDEXED_F, &
-                  h5lexists_f, h5ldelete_f
+                  h5lexists_f, h5ldelete_f, h5eset_auto_f
   use fracas_kinds, only: wp, ik
   use fracas_errors, only: fatal, warn
   use fracas_files, only: file_exists
@@ -100,12 +101,16 @@ contains
 
   ! ================================================================ library
 
-  !> Open the HDF5 library once (called by every file open/create).
+  !> Open the HDF5 library once (called by every file open/create). HDF5's own
+  !> error-stack printing is switched off (our messages name the object) unless
+  !> the environment variable FRACAS_HDF5_DEBUG is set.
   subroutine h5_init()
-    integer :: err
+    integer :: err, stat
     if (initialised) return
     call h5open_f(err)
     call check(err, 'cannot initialise the HDF5 library')
+    call get_environment_variable('FRACAS_HDF5_DEBUG', status=stat)
+    if (stat /= 0) call h5eset_auto_f(0, err)
     t_real = h5kind_to_type(wp, H5_REAL_KIND)
     t_int = h5kind_to_type(ik, H5_INTEGER_KIND)
     initialised = .true.
@@ -145,7 +150,8 @@ contains
     else
       call h5fcreate_f(trim(path), H5F_ACC_EXCL_F, fid, err, creation_prp=fcpl)
     end if
-    if (err < 0) call fatal('HDF5: cannot create file '//trim(path))
+    if (err < 0) call fatal('HDF5: cannot create file '//trim(path)// &
+                            ' (does its directory exist, is it writable?)')
     call h5pclose_f(fcpl, err)
   end subroutine h5_create_file
 
