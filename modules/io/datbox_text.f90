@@ -87,19 +87,21 @@ contains
     subroutine add_line(raw, num)
       character(len=*), intent(in) :: raw
       integer, intent(in) :: num
+      character(len=:), allocatable :: t
       integer :: last, k
       last = len(raw)
       ! Drop a carriage return (CRLF files) and turn tabs into blanks.
       if (last > 0) then
         if (raw(last:last) == achar(13)) last = last - 1
       end if
-      if (len_trim(raw(1:last)) == 0) return
-      if (.not. keep .and. (raw(1:1) == '!' .or. raw(1:1) == '#')) return
-      tf%n = tf%n + 1
-      tf%lines(tf%n)%text = trim(raw(1:last))
-      do k = 1, len(tf%lines(tf%n)%text)
-        if (tf%lines(tf%n)%text(k:k) == achar(9)) tf%lines(tf%n)%text(k:k) = ' '
+      t = raw(1:last)
+      do k = 1, len(t)
+        if (t(k:k) == achar(9)) t(k:k) = ' '
       end do
+      if (len_trim(t) == 0) return
+      if (.not. keep .and. (t(1:1) == '!' .or. t(1:1) == '#')) return
+      tf%n = tf%n + 1
+      tf%lines(tf%n)%text = trim(t)
       tf%lines(tf%n)%src%file = path
       tf%lines(tf%n)%src%line = num
     end subroutine add_line
