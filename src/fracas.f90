@@ -1,5 +1,164 @@
-!> fracas CASE_DIR: the driver (placeholder until the solver lands).
+!> fracas: run (or check) a case directory holding DATBOX/.
+!>   fracas [options] CASE_DIR
 program fracas
+  use, intrinsic :: iso_fortran_env, only: output_unit, int64
+  use fracas_kinds, only: wp
+  use fracas_errors, only: fatal, warn
+  use fracas_deck, only: deck_t
+  use fracas_read_deck, only: read_deck
+  use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
+  use fracas_output, only: output_t, output_open, output_vtk, output_outbox, output_snapshot, &
+                           output_series, output_close
+  use fracas_version, only: version_string
   implicit none
-  print '(a)', 'fracas: not built yet'
+
+  character(len=:), allocatable :: case_dir, command_file, out_dir, arg
+  character(len=1024), allocatable :: settings(:)
+  logical :: check_only, quiet, overwrite
+  type(deck_t) :: deck
+  type(scene_t) :: sc
+  type(output_t) :: out
+  type(step_report_t) :: rep
+  integer :: i, nargs, nsteps, istep, every, total_sweeps, unconverged, len_arg
+  integer(int64) :: t0, t1, rate
+  real(wp) :: elapsed, worst_residual
+
+  call main()
+
+contains
+
+  subroutine main()
+    check_only = .false.; quiet = .false.; overwrite = .false.
+    command_file = ''; out_dir = ''; case_dir = ''
+    allocate (settings(0))
+    nargs = command_argument_count()
+    i = 0
+    do while (i < nargs)
+      i = i + 1
+      arg = argument(i)
+      select case (arg)
+      case ('--check')
+        check_only = .true.
+      case ('--quiet', '-q')
+        quiet = .true.
+      case ('--overwrite')
+        overwrite = .true.
+      case ('--command')
+        i = i + 1
+        command_file = argument(i)
+      case ('--output')
+        i = i + 1
+        out_dir = argument(i)
+      case ('--set')
+        i = i + 1
+        settings = [settings, [character(len=1024) :: argument(i)]]
+      case ('--version')
+        write (output_unit, '(a)') 'fracas '//version_string
+        return
+      case ('--help', '-h')
+        call usage()
+        return
+      case default
+        if (arg(1:1) == '-') call fatal("unknown option '"//arg//"' (see fracas --help)")
+        if (len(case_dir) > 0) call fatal("more than one case directory given: '"//case_dir//"' and '"//arg//"'")
+        case_dir = arg
+      end select
+    end do
+    if (len(case_dir) == 0) then
+      call usage()
+      call fatal('no case directory given')
+    end if
+    if (len(out_dir) == 0) out_dir = case_dir
+
+    if (len(command_file) > 0) then
+      call read_deck(case_dir, deck, command_file, settings=settings)
+    else
+      call read_deck(case_dir, deck, settings=settings)
+    end if
+    call scene_build(deck, sc)
+    nsteps = deck%run%number_of_steps
+    if (check_only) then
+      write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'check: OK (', sc%bodies%n, ' bodies, ', sc%tactors%n, &
+        ' contactors, ', size(sc%laws), ' contact laws, ', nsteps, ' steps)'
+      return
+    end if
+
+    call output_open(out, sc, out_dir, case_dir, overwrite, deck%run%output_vtk_every > 0, .true.)
+    if (deck%run%output_vtk_every > 0) call output_vtk(out, sc)
+    every = deck%run%progress_every
+    if (every <= 0) every = max(1, nsteps / 20)
+    total_sweeps = 0; unconverged = 0; worst_residual = 0.0_wp
+    call system_clock(t0, rate)
+    do istep = 1, nsteps
+      call scene_step(sc, rep)
+      total_sweeps = total_sweeps + rep%nlgs%sweeps
+      if (.not. rep%nlgs%converged) unconverged = unconverged + 1
+      worst_residual = max(worst_residual, rep%nlgs%residual)
+      call output_series(out, sc, rep)
+      if (every_n(deck%run%output_vtk_every)) call output_vtk(out, sc)
+      if (every_n(deck%run%output_hdf5_every)) call output_snapshot(out, sc)
+      if (every_n(deck%run%output_dof_every) .or. (deck%run%output_dof_every == 0 .and. istep == nsteps)) &
+        call output_outbox(out, sc)
+      if (.not. quiet .and. (mod(istep, every) == 0 .or. istep == nsteps)) call progress()
+    end do
+    call output_close(out)
+    call system_clock(t1)
+    if (.not. quiet) then
+      elapsed = real(t1 - t0, wp) / real(rate, wp)
+      write (output_unit, '(a,i0,a,f0.3,a,i0,a,es9.2)') 'fracas: done: ', nsteps, ' steps in ', elapsed, &
+        ' s, ', total_sweeps, ' NLGS sweeps, worst natural-map residual ', worst_residual
+      write (output_unit, '(a)') 'fracas: results: '//out_dir//'/OUTBOX/fracas.h5'
+      if (deck%run%output_vtk_every > 0) write (output_unit, '(a)') 'fracas: ParaView: '//out_dir//'/DISPLAY/fracas.pvd'
+    end if
+    if (unconverged > 0) then
+      block
+        character(len=64) :: msg
+        write (msg, '(i0,a)') unconverged, ' steps reached the NLGS sweep limit without converging'
+        call warn(trim(msg))
+      end block
+    end if
+
+  end subroutine main
+
+  !> True every n steps (never for n = 0).
+  logical function every_n(n)
+    integer, intent(in) :: n
+    every_n = .false.
+    if (n > 0) every_n = mod(istep, n) == 0
+  end function every_n
+
+  subroutine progress()
+    real(wp) :: el, remaining
+    call system_clock(t1)
+    el = real(t1 - t0, wp) / real(rate, wp)
+    remaining = el / istep * (nsteps - istep)
+    write (output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,i0,a,es9.2,a,f0.1,a,f0.1,a)') 'step ', istep, '/', nsteps, &
+      '  t=', sc%time, '  contacts ', rep%contacts, '  sweeps ', rep%nlgs%sweeps, '  residual ', &
+      rep%nlgs%residual, '  elapsed ', el, ' s  remaining ', remaining, ' s'
+    flush (output_unit)
+  end subroutine progress
+
+  function argument(k) result(s)
+    integer, intent(in) :: k
+    character(len=:), allocatable :: s
+    if (k > nargs) call fatal('option '//arg//' needs a value')
+    call get_command_argument(k, length=len_arg)
+    allocate (character(len=len_arg) :: s)
+    call get_command_argument(k, s)
+  end function argument
+
+  subroutine usage()
+    write (output_unit, '(a)') &
+      'usage: fracas [options] CASE_DIR', &
+      '  Runs the NSCD simulation described by CASE_DIR/DATBOX (LMGC90 DATBOX files', &
+      '  plus COMMAND.DAT) and writes CASE_DIR/OUTBOX and CASE_DIR/DISPLAY.', &
+      'options:', &
+      '  --check            read and validate the deck, run nothing', &
+      '  --command FILE     run-control deck to use instead of CASE_DIR/DATBOX/COMMAND.DAT', &
+      '  --set KEY=VALUE    override one COMMAND.DAT setting (repeatable)', &
+      '  --output DIR       write OUTBOX/ and DISPLAY/ under DIR instead of CASE_DIR', &
+      '  --overwrite        replace results already present', &
+      '  --quiet, -q        no progress lines', &
+      '  --version, --help'
+  end subroutine usage
 end program fracas

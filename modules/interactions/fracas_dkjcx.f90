@@ -14,14 +14,27 @@ contains
     real(wp), intent(out) :: gap, normal(2), point(2)
     real(wp) :: axis(2), s, closest(2), d(2), dist
     axis = [cos(angle), sin(angle)]
-    s = max(-ax1, min(ax1, dot_product(c_cd - c_jc, axis)))
-    closest = c_jc + s * axis
-    d = c_cd - closest
-    dist = norm2(d)
-    if (dist > 0.0_wp) then
-      normal = d / dist
-    else
+    s = dot_product(c_cd - c_jc, axis)
+    if (abs(s) < ax1) then
+      ! Facing the flat side: the normal is the wall's own normal, exactly.
       normal = [-axis(2), axis(1)]
+      dist = dot_product(c_cd - c_jc, normal)
+      if (dist < 0.0_wp) then
+        normal = -normal
+        dist = -dist
+      end if
+      closest = c_jc + s * axis
+    else
+      ! Beyond an end: the rounded cap around the segment's end point.
+      s = sign(ax1, s)
+      closest = c_jc + s * axis
+      d = c_cd - closest
+      dist = norm2(d)
+      if (dist > 0.0_wp) then
+        normal = d / dist
+      else
+        normal = [-axis(2), axis(1)]
+      end if
     end if
     gap = dist - r_cd - ax2
     point = closest + (ax2 + 0.5_wp * gap) * normal

@@ -28,7 +28,7 @@ contains
     character(len=*), intent(in) :: message
     write (error_unit, '(a)') 'fracas: error: '//trim(message)
     call run_cleanup()
-    error stop 1
+    error stop 1, quiet=.true.
   end subroutine fatal
 
   !> Stop the run on bad input: "FILE:LINE:COL: message" (exit status 1).
@@ -42,7 +42,7 @@ contains
     if (line > 0 .and. col > 0) where = where//':'//itoa(col)
     write (error_unit, '(a)') where//': '//trim(message)
     call run_cleanup()
-    error stop 1
+    error stop 1, quiet=.true.
   end subroutine input_error
 
   !> A warning on standard error; the run goes on.
