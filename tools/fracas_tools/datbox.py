@@ -431,7 +431,8 @@ read_dof_ini = read_dof
 # --------------------------------------------------------------------------------------
 
 def read_command(path):
-    """COMMAND.DAT (one 'keyword value' per line) -> pre.RunControl."""
+    """COMMAND.DAT ('keyword value' or 'keyword = value' per line, keywords
+    case-insensitive, '!' or '#' start a comment) -> pre.RunControl."""
     rc = RunControl()
     seen = {}
     with open(path, "r", encoding="latin-1") as f:
@@ -439,17 +440,25 @@ def read_command(path):
             s = raw.rstrip("\n")
             cut = min([p for p in (s.find("!"), s.find("#")) if p >= 0], default=len(s))
             s = s[:cut]
-            parts = s.split()
-            if not parts:
+            if not s.strip():
                 continue
             col = len(s) - len(s.lstrip()) + 1
-            if len(parts) != 2:
+            body = s.strip()
+            k = body.split()[0].split("=")[0]
+            rest = body[len(k):].strip()
+            if rest.startswith("="):
+                rest = rest[1:].strip()
+            if not rest or len(rest.split()) != 1:
                 raise DatboxError(path, i, col, "expected 'keyword value'")
-            k, v = parts
+            k = k.lower()
             if k in seen:
                 raise DatboxError(path, i, col, f"{k} already given on line {seen[k]}")
+            pair = {"number_of_steps": "final_time", "final_time": "number_of_steps"}.get(k)
+            if pair in seen:
+                raise DatboxError(path, i, col, f"give either number_of_steps or final_time, not both "
+                                  f"(the other is on line {seen[pair]})")
             try:
-                rc.values[k] = RunControl._convert(k, v)
+                rc.values[k] = RunControl._convert(k, rest)
             except ValueError as e:
                 raise DatboxError(path, i, col, str(e)) from None
             seen[k] = i

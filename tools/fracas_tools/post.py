@@ -14,11 +14,13 @@ Units are SI. Bodies are 2D with unit thickness, so masses are kg/m, forces N/m 
 energies J/m (per metre of thickness).
 
 Positions: /bodies/reference holds the reference configuration (BODIES.DAT node
-coordinates); snapshot X is read as LMGC90's X, the displacement from the
-reference (position = reference + X), unless X or its group carries an attribute
-``meaning``/``description`` saying 'position', or the first snapshot shows that
-X is close to the reference (then X is taken as the position); force either with
-Run(path, x_is='displacement'|'position').
+coordinates) and snapshot X the displacement from it (doc/output_layout.md, as
+LMGC90's DOF files): position = reference + X. An attribute ``meaning`` or
+``description`` on bodies/X saying 'position' (or Run(path, x_is='position'))
+makes X read as absolute positions instead.
+
+Series: all columns are read as float64 and cut to the shortest length (a run that
+crashed between two flushes may leave them differing by one row).
 """
 
 import math
@@ -136,6 +138,9 @@ class Run:
             for k, ds in f["series"].items():
                 if isinstance(ds, h5py.Dataset) and ds.ndim == 1:
                     self.series[k] = np.asarray(ds[()], dtype=float)
+        if self.series:
+            n = min(len(v) for v in self.series.values())
+            self.series = {k: v[:n] for k, v in self.series.items()}
         self.help = {}
         if "help" in f:
             g = f["help"]
@@ -216,15 +221,7 @@ class Run:
                         return "displacement"
                     if "position" in text or "absolute" in text:
                         return "position"
-        if "bodies/X" not in g:
-            return "displacement"
-        X = np.asarray(g["bodies/X"][()], dtype=float)
-        ref = self.bodies["reference"]
-        if X.shape != ref.shape or len(X) == 0:
-            return "displacement"
-        d_pos = np.median(np.abs(X[:, :2] - ref[:, :2]))
-        d_disp = np.median(np.abs(X[:, :2]))
-        return "position" if d_pos < 0.5 * d_disp else "displacement"
+        return "displacement"
 
     def snapshot(self, which=-1):
         """A Snapshot by index in the snapshot list (negative from the end) or by
@@ -370,7 +367,7 @@ def coordination(run, snap, mask=None):
                grain_contacts=ngg, wall_contacts=nwall)
     nonr = cg >= 2
     out["rattler_fraction"] = float(1.0 - nonr.mean())
-    out["z_mech"] = float(cg[nonr].mean()) if nonr.any() else 0.0
+    out["z_mech"] = float(cg[nonr].mean()) if nonr.any() else float("nan")
     return out
 
 
@@ -604,7 +601,8 @@ def summary(run):
         a = np.abs(s[k]) if absval else s[k]
         return float(np.nanmax(a))
 
-    works = [np.abs(s[k]) for k in ("work_gravity", "work_driven") if k in s and len(s[k])]
+    works = [np.abs(s[k]) for k in ("work_gravity", "work_driven", "work_forces", "work_supports")
+             if k in s and len(s[k])]
     wmax = float(np.nanmax(np.sum(works, axis=0))) if works else None
     bal = mx("balance_error", absval=True)
     out = {
@@ -627,7 +625,7 @@ def summary(run):
         "balance error max [J/m]": bal,
         "balance error / work": (bal / wmax) if bal is not None and wmax else None,
         "max overlap [m]": mx("max_overlap"),
-        "wall time [s]": float(np.sum(s["wall_time"])) if "wall_time" in s else None,
+        "wall time [s]": last("wall_time"),
     }
     return out
 
@@ -700,7 +698,9 @@ def plot_energy_balance(run, out):
     """Energy audit terms per step and the balance error."""
     s = run.series
     terms = [("work_gravity", "work of gravity"), ("work_driven", "work of driven dofs"),
-             ("kinetic_energy", "kinetic energy"), ("dissipated", "dissipated")]
+             ("work_forces", "work of driven forces"), ("work_supports", "work of supports"),
+             ("kinetic_energy", "kinetic energy"), ("elastic_energy", "elastic energy"),
+             ("dissipated", "dissipated")]
     have = [(k, lab) for k, lab in terms if k in s]
     if not have and "balance_error" not in s:
         return None
@@ -747,9 +747,12 @@ def plot_solver(run, out):
     ax = axes[1]
     plotted = []
     for k, lab in (("residual_natural_map", "natural-map residual |F|/|q|"),
-                   ("quad_dv", "QuadDV (tol. units)"), ("maxm_dv", "MaxmDV (tol. units)")):
+                   ("residual_onepq", "residual_onepq"),
+                   ("quad_dv", "QuadDV (tol. units)"), ("maxm_dv", "MaxmDV (tol. units)"),
+                   ("mean_dvor", "|MeanDVoR| (tol. units)")):
         if k in s:
-            y = np.where(s[k] > 0, s[k], np.nan)
+            y = np.abs(s[k])
+            y = np.where(y > 0, y, np.nan)
             ax.plot(t, y, lw=0.8, label=lab)
             plotted.append(y)
     if plotted and np.any(np.isfinite(np.concatenate(plotted))):
@@ -758,8 +761,8 @@ def plot_solver(run, out):
     ax.set_ylabel("residual [-]")
     ax.grid(True, alpha=0.3, which="both")
     ax = axes[2]
-    if "wall_time" in s:
-        ax.plot(t, s["wall_time"] * 1e3, lw=0.8, color="C2")
+    if "wall_time" in s:          # cumulative seconds since the start of the run
+        ax.plot(t, np.diff(s["wall_time"], prepend=0.0) * 1e3, lw=0.8, color="C2")
     ax.set_ylabel("wall time per step [ms]")
     ax.set_xlabel(tl)
     ax.grid(True, alpha=0.3)
@@ -775,8 +778,11 @@ def plot_contacts(run, out):
     plt = _plt()
     t, tl = _time_axis(run)
     fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
-    if "contacts" in s:
-        axes[0].plot(t, s["contacts"], lw=1.0)
+    for k, lab in (("contacts", "contacts"), ("active_contacts", "active contacts")):
+        if k in s:
+            axes[0].plot(t, s[k], lw=1.0, label=lab)
+    if "active_contacts" in s:
+        axes[0].legend(fontsize=8)
     axes[0].set_ylabel("contacts")
     axes[0].set_title("Contacts and overlaps")
     axes[0].grid(True, alpha=0.3)
@@ -1062,8 +1068,12 @@ def check_h5(path):
                 errors.append(f"/series/{k} is not 1-D (shape {s})")
             sizes = {s[0] for k, s in lens.items() if len(s) == 1}
             if len(sizes) > 1:
-                errors.append("/series datasets have different lengths: " +
-                              ", ".join(f"{k}={s[0]}" for k, s in lens.items() if len(s) == 1))
+                msg = "/series datasets have different lengths: " + \
+                    ", ".join(f"{k}={s[0]}" for k, s in lens.items() if len(s) == 1)
+                if attrs.get("complete") == 0 and max(sizes) - min(sizes) <= 1:
+                    warns.append(msg + " (unfinished run: use the shortest)")
+                else:
+                    errors.append(msg)
             nrows = max(sizes) if sizes else 0
             for k in ("step", "time"):
                 if k not in g:
@@ -1073,7 +1083,7 @@ def check_h5(path):
                         "balance_error", "mean_overlap", "max_overlap", "wall_time"]
             absent = [k for k in expected if k not in g]
             if absent:
-                warns.append("series not present: " + ", ".join(absent))
+                info.append("series not in the file: " + ", ".join(absent))
             if "time" in g and g["time"].ndim == 1 and len(g["time"]) > 1:
                 t = g["time"][()]
                 if np.any(np.diff(t) <= 0):

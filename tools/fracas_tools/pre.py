@@ -545,8 +545,14 @@ class RunControl:
         self.set(**kw)
 
     def set(self, **kw):
+        """Set keywords; setting number_of_steps drops final_time and the other way
+        round (as the solver's --set does)."""
         for k, v in kw.items():
+            k = k.lower()
             self.values[k] = self._convert(k, v)
+            other = {"number_of_steps": "final_time", "final_time": "number_of_steps"}.get(k)
+            if other:
+                self.values.pop(other, None)
         return self
 
     @staticmethod
@@ -556,9 +562,10 @@ class RunControl:
                              + ", ".join(COMMAND_KEYWORDS))
         t = COMMAND_KEYWORDS[k]
         if isinstance(t, tuple):
-            if v not in t:
-                raise ValueError(f"{where}{k} must be one of {t}, got {v!r}")
-            return v
+            canon = {x.lower(): x for x in t}
+            if not isinstance(v, str) or v.lower() not in canon:
+                raise ValueError(f"{where}{k} must be one of {', '.join(t)}, got {v!r}")
+            return canon[v.lower()]
         try:
             if t is int:
                 if isinstance(v, str):
@@ -568,7 +575,7 @@ class RunControl:
                 v = int(v)
             else:
                 v = float(str(v).replace("D", "e").replace("d", "e")) if isinstance(v, str) else float(v)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise ValueError(f"{where}{k} needs {'an integer' if t is int else 'a real'} value, "
                              f"got {v!r}") from None
         if t is float and not math.isfinite(v):
@@ -577,8 +584,10 @@ class RunControl:
             raise ValueError(f"{where}{k} must be positive, got {v!r}")
         if k in _NONNEGATIVE and v < 0:
             raise ValueError(f"{where}{k} must be >= 0, got {v!r}")
-        if k == "theta" and not 0.0 <= v <= 1.0:
-            raise ValueError(f"{where}theta must be in [0, 1], got {v!r}")
+        if k == "theta" and not 0.5 <= v <= 1.0:
+            raise ValueError(f"{where}theta must be in [0.5, 1], got {v!r}")
+        if k == "nlgs_relaxation" and not 0.0 < v < 2.0:
+            raise ValueError(f"{where}nlgs_relaxation must be in (0, 2), got {v!r}")
         return v
 
     def __getitem__(self, k):

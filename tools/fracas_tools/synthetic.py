@@ -157,7 +157,7 @@ def make_h5(path, nx=10, ny=6, radius=0.01, n_steps=200, snapshot_every=50, time
         "dissipated": diss, "balance_error": bal,
         "mean_overlap": 10 ** rng.uniform(-9, -8, n_steps) * radius,
         "max_overlap": 10 ** rng.uniform(-7, -6, n_steps) * radius,
-        "wall_time": rng.uniform(1e-3, 3e-3, n_steps),
+        "wall_time": np.cumsum(rng.uniform(1e-3, 3e-3, n_steps)),
     }
     names = [s for s in SERIES if s not in missing]
 
