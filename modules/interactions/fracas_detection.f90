@@ -58,8 +58,8 @@ contains
         if (cls_kind(j) == kname .and. cls_color(j) == t%color(k)) det%cls(k) = j
       end do
       if (det%cls(k) == 0) then
-        cls_kind = [cls_kind, kname]
-        cls_color = [cls_color, t%color(k)]
+        cls_kind = [character(len=5) :: cls_kind, kname]
+        cls_color = [character(len=5) :: cls_color, t%color(k)]
         det%cls(k) = size(cls_kind)
       end if
     end do

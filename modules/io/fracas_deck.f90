@@ -126,7 +126,7 @@ module fracas_deck
     integer :: nlgs_seed = 1
     integer :: output_dof_every = 0      !< DOF.OUT.n / Vloc_Rloc.OUT.n every n steps (0: last step only)
     integer :: output_vtk_every = 0      !< DISPLAY/*.vtu every n steps (0: none)
-    integer :: output_hdf5_every = 1     !< snapshot in fracas.h5 every n steps (0: none)
+    integer :: output_hdf5_every = 10    !< snapshot in fracas.h5 every n steps (0: none)
     integer :: progress_every = 0        !< progress line every n steps (0: about 20 lines a run)
   end type run_control_t
 

@@ -108,7 +108,7 @@ contains
     type(rbdy2_t), intent(inout) :: b
     type(nlgs_report_t), intent(out) :: report
     integer :: k, iblock, isweep, n
-    real(wp) :: sums(7), maxes(2), fsum, qsum
+    real(wp) :: sums(7), maxes(2), fsum, qsum, vscale
     n = c%n
     report%sweeps = 0
     if (allocated(solver%order)) then
@@ -119,6 +119,8 @@ contains
       solver%qfree(:, k) = contact_velocity(c, k, b%v) + c%shift(:, k)
       if (c%active(k)) call inject(k, c%r(1, k), c%r(2, k))
     end do
+    vscale = 0.0_wp
+    if (n > 0) vscale = sqrt(sum(solver%qfree(:, 1:n)**2) / n)
     select case (solver%s%order)
     case ('reversed')
       solver%order(1:n) = [(n + 1 - k, k=1, n)]
@@ -226,7 +228,9 @@ contains
       real(wp) :: nact, quad_wr, mean_wrr, tol
       tol = solver%s%tol
       nact = sums(6)
-      if (nact < 1.0_wp .or. sums(5) <= 0.0_wp .or. sums(4) <= 0.0_wp) then
+      ! No reaction, or reactions at round-off level compared with the free
+      ! velocities (bodies merely touching): nothing left to converge.
+      if (nact < 1.0_wp .or. sums(4) <= 0.0_wp .or. sqrt(sums(5) / max(nact, 1.0_wp)) <= 1.0e-12_wp * vscale) then
         rep%quad_dv = 0.0_wp; rep%maxm_dv = 0.0_wp; rep%quad_dvr = 0.0_wp
         rep%maxm_dvr = 0.0_wp; rep%mean_dvor = 0.0_wp
         rep%converged = .true.
