@@ -60,6 +60,14 @@ def _keyword(t):
     return t[:6] if t.startswith("$") else None
 
 
+def _top_level(cur, ln, t):
+    """A line outside any record. LMGC90's readers scan for keywords and ignore
+    such lines (its own echo files hold '  ! ...' comment lines with a blank
+    column 1); an unknown '$' keyword is an error."""
+    if t.startswith("$"):
+        raise cur.err(ln, 1, f"unexpected keyword {t.strip()[:12]!r} here")
+
+
 # --------------------------------------------------------------------------------------
 # BODIES.DAT
 # --------------------------------------------------------------------------------------
@@ -105,7 +113,8 @@ def read_bodies(path):
     while cur.more():
         ln, t = cur.next("$bdyty")
         if _keyword(t) != "$bdyty":
-            raise cur.err(ln, 1, f"expected $bdyty, found {t.strip()[:20]!r}")
+            _top_level(cur, ln, t)
+            continue
         lm, tm = cur.next("body model line")
         model = field(tm, 2, 6)
         if model != "RBDY2":
@@ -194,7 +203,7 @@ def read_bulk_behav(path):
             except ValueError as e:
                 raise cur.err(lb, 2, str(e)) from None
         else:
-            raise cur.err(ln, 1, f"unexpected line: {t.strip()[:30]!r}")
+            _top_level(cur, ln, t)
     return gravity, mats
 
 
@@ -291,7 +300,7 @@ def read_tact_behav(path):
                     raise cur.err(ls, 2, str(e)) from None
                 rules[-1].source_line = ls
         else:
-            raise cur.err(ln, 1, f"unexpected line: {t.strip()[:30]!r}")
+            _top_level(cur, ln, t)
     return laws, rules
 
 
@@ -332,7 +341,8 @@ def read_drv_dof(path, datbox_dir=None):
     while cur.more():
         ln, t = cur.next("$bdyty")
         if _keyword(t) != "$bdyty":
-            raise cur.err(ln, 1, f"expected $bdyty, found {t.strip()[:20]!r}")
+            _top_level(cur, ln, t)
+            continue
         lm, tm = cur.next("body line")
         if field(tm, 2, 6) != "RBDY2":
             raise cur.err(lm, 2, f"body model {field(tm, 2, 6)!r}: only RBDY2 is supported")
@@ -419,7 +429,7 @@ def read_dof(path):
                 raise cur.err(lm, 1, "body record without $nodty")
             states[num] = (x, v)
         else:
-            raise cur.err(ln, 1, f"unexpected line: {t.strip()[:30]!r}")
+            _top_level(cur, ln, t)
     return step, time, states
 
 

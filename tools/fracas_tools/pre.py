@@ -696,6 +696,13 @@ class Case:
         b = Body(material, center, angle, avrd=avrd, gyrd=gyrd)
         return self.append(b)
 
+    def _new(self, material, center, contactor):
+        """Append a body with one contactor (built first, so that an invalid
+        contactor leaves the case unchanged)."""
+        b = Body(material, center)
+        b.contactors.append(contactor)
+        return self.append(b)
+
     def append(self, body):
         self.bodies.append(body)
         body.number = len(self.bodies)
@@ -703,15 +710,15 @@ class Case:
 
     def add_disk(self, center, radius, material, color="BLEUx"):
         """A rigid disk (DISKx) centred at ``center``."""
-        return self.add_body(material, center).add_disk(radius, color)
+        return self._new(material, center, Disk(radius, color))
 
     def add_xksid(self, center, radius, material, color="DRUMx"):
         """A hollow disk (drum) of inner radius ``radius`` (xKSID)."""
-        return self.add_body(material, center).add_xksid(radius, color)
+        return self._new(material, center, Xksid(radius, color))
 
     def add_jonc(self, center, half_length, half_thickness, material, color="WALLx", angle=0.0):
         """A JONCx wall; ``angle`` rotates it (written as DOF.INI X(3), like pylmgc90)."""
-        b = self.add_body(material, center).add_jonc(half_length, half_thickness, color)
+        b = self._new(material, center, Jonc(half_length, half_thickness, color))
         if angle:
             b.rotate(angle)
         return b
@@ -722,9 +729,9 @@ class Case:
         With ``center`` given, the vertices are relative to that node instead."""
         v = np.asarray(vertices, dtype=float)
         if center is None:
-            c = polygon_centroid(v)
-            return self.add_body(material, c).add_polygon(v - c, color)
-        return self.add_body(material, center).add_polygon(v, color)
+            c = polygon_centroid(v) if polygon_area(v) > 0.0 else v.mean(axis=0)
+            return self._new(material, c, Polygon(v - c, color))
+        return self._new(material, center, Polygon(v, color))
 
     def add_polygon_cluster(self, polygons, material, color="BLEUx"):
         """One rigid body made of several convex polygons (absolute vertices), e.g.
@@ -733,10 +740,10 @@ class Case:
         areas = np.array([polygon_area(p) for p in polys])
         cents = np.array([polygon_centroid(p) for p in polys])
         c = (areas[:, None] * cents).sum(axis=0) / areas.sum()
-        b = self.add_body(material, c)
+        b = Body(material, c)
         for p in polys:
             b.add_polygon(p - c, color)
-        return b
+        return self.append(b)
 
     # -- checks --
     def check(self):
@@ -748,6 +755,9 @@ class Case:
                                  f"(add_material)")
             if not b.contactors:
                 raise ValueError(f"body {b.number} has no contactor")
+            for c in b.contactors:
+                if c.kind == "POLYG" and polygon_area(c.vertices) <= 0.0:
+                    raise ValueError(f"body {b.number}: POLYG vertices are not counter-clockwise")
             seen = set()
             for d in b.driven:
                 if (d.kind, d.dof) in seen:
