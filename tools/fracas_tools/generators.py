@@ -240,16 +240,14 @@ def deposit_polygons(case, n, rmin, rmax, width, material, color="BLEUx", seed=1
     uniform in n_vertices[0]..n_vertices[1]) on a jittered lattice above y0 in
     [x0, x0 + width], without overlap. Returns the new bodies."""
     rng = rng_from(seed)
-    radii = rng.uniform(rmin, rmax, int(n))
-    centres = lattice_positions(radii, width, rng, x0, y0)
-    bodies = []
-    for r, c in zip(radii, centres):
+    polys = []
+    for r in rng.uniform(rmin, rmax, int(n)):
         nv = int(rng.integers(n_vertices[0], n_vertices[1] + 1))
-        v = random_convex_polygon(nv, r, rng, jitter)
-        # the centroid is at the origin and every vertex within r of it: the
-        # lattice cell (of half size >= rmax) keeps polygons apart
-        bodies.append(case.add_polygon(v + c, material, color))
-    return bodies
+        polys.append(random_convex_polygon(nv, r, rng, jitter))
+    # bounding radius about the centroid (can exceed the circumradius once centred)
+    bound = np.array([np.hypot(v[:, 0], v[:, 1]).max() for v in polys])
+    centres = lattice_positions(bound, width, rng, x0, y0)
+    return [case.add_polygon(v + c, material, color) for v, c in zip(polys, centres)]
 
 
 # --------------------------------------------------------------------------------------
