@@ -129,6 +129,13 @@ contains
           (1.0_wp - theta) * drive_value(d, t) + theta * drive_value(d, t + h)
       end associate
     end do
+    ! A driven dof moves with its imposed velocity at both ends of the step,
+    ! whatever the initial state said.
+    do k = 1, size(b%drives)
+      associate (d => b%drives(k))
+        if (d%is_velocity) b%vbegin(d%dof, d%body) = drive_value(d, t)
+      end associate
+    end do
     b%vfree = b%vbegin + h * b%inv_mass * b%fext
     do k = 1, size(b%drives)
       associate (d => b%drives(k))

@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""Compare Fracas OUTBOX files with those LMGC90 wrote for the same DATBOX.
+
+  compare_lmgc90.py exact OURS_OUTBOX N_OURS REF_OUTBOX N_REF [--xtol A] [--vtol R] [--rtol R]
+      DOF.OUT and Vloc_Rloc.OUT of one write, body by body and contact by contact:
+      |X - Xref| <= xtol (absolute, m and rad); |V - Vref| <= vtol * max(max|Vref|, vfloor);
+      the same set of interactions, the same statuses for contacts carrying a
+      reaction, |R - Rref| <= rtol * max(max|Rref|, rfloor) (forces rlt/H, rln/H;
+      reactions under rfloor newtons are round-off of bodies merely touching).
+  compare_lmgc90.py stats OURS_OUTBOX N_OURS REF_OUTBOX N_REF [--ctol R] [--htol A]
+      For chaotic granular flow, where per-body values are meaningless: number
+      of interactions with a reaction within ctol (relative), mean body height
+      within htol (absolute, m), and the same total count of bodies.
+Prints one line per quantity and exits 1 if any fails.
+"""
+import argparse
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
+from fracas_tools.datbox import read_dof  # noqa: E402
+
+NUM = re.compile(r"[-+]?\d*\.\d+[DdEe][-+]\d+")
+
+
+def read_vloc(path):
+    """Vloc_Rloc.OUT.n -> dict key -> dict(status, rlt, rln); key = (type, cd body,
+    cd contactor, an body, an contactor)."""
+    lines = open(path).read().splitlines()
+    out = {}
+    i = 0
+    while i < len(lines):
+        if lines[i].startswith("$icdan"):
+            inter = lines[i][8:13]
+            ids = lines[i + 2]
+            f = ids.split()
+            # id line: RBDY2 n DISKx n behav RBDY2 n DISKx n status iadj (PL types add columns)
+            words = [w for w in f]
+            cdbdy, cdtac = int(words[1]), int(words[3])
+            j = 4
+            if words[j] in ("CDVER",):
+                j += 2
+            j += 1  # behav
+            anbdy, antac = int(words[j + 1]), int(words[j + 3])
+            status = words[-2]
+            vals = [float(x.replace("D", "E").replace("d", "e")) for x in NUM.findall(lines[i + 3])]
+            key = (inter, cdbdy, cdtac, anbdy, antac)
+            out[key] = dict(status=status, rlt=vals[0], rln=vals[1])
+            i += 3
+        i += 1
+    return out
+
+
+results = []
+
+
+def report(name, ours, ref, err, tol, ok):
+    results.append(ok)
+    print(f"{'PASS' if ok else 'FAIL'} {name}: ours={ours} ref={ref} err={err:.3e} tol={tol:.3e}")
+
+
+def exact(a):
+    _, _, ours = read_dof(os.path.join(a.ours, f"DOF.OUT.{a.n_ours}"))
+    _, _, ref = read_dof(os.path.join(a.ref, f"DOF.OUT.{a.n_ref}"))
+    report("same bodies", len(ours), len(ref), float(len(set(ours) ^ set(ref))), 0.0, set(ours) == set(ref))
+    vmax = max(max(abs(v).max() for _, v in ref.values()), a.vfloor)
+    ex = max(abs(ours[b][0] - ref[b][0]).max() for b in ref)
+    ev = max(abs(ours[b][1] - ref[b][1]).max() for b in ref)
+    report("max |X - Xref|", "", "", ex, a.xtol, ex <= a.xtol)
+    report("max |V - Vref| / max|Vref|", "", "", ev / vmax, a.vtol, ev / vmax <= a.vtol)
+    vo = read_vloc(os.path.join(a.ours, f"Vloc_Rloc.OUT.{a.n_ours}"))
+    vr = read_vloc(os.path.join(a.ref, f"Vloc_Rloc.OUT.{a.n_ref}"))
+    report("same interactions", len(vo), len(vr), float(len(set(vo) ^ set(vr))), 0.0, set(vo) == set(vr))
+    common = set(vo) & set(vr)
+    # Reactions below rfloor (N) are round-off (bodies merely touching).
+    rmax = max([max(abs(r["rlt"]), abs(r["rln"])) for r in vr.values()] + [a.rfloor])
+    er = max([max(abs(vo[k]["rlt"] - vr[k]["rlt"]), abs(vo[k]["rln"] - vr[k]["rln"])) for k in common] + [0.0])
+    report("max |R - Rref| / max|Rref|", "", "", er / rmax, a.rtol, er / rmax <= a.rtol)
+    # Statuses only mean something where the reaction is not negligible.
+    bad = [k for k in common if abs(vr[k]["rln"]) > max(a.rtol * rmax, a.rfloor) and vo[k]["status"] != vr[k]["status"]]
+    report("statuses of loaded contacts", len(common) - len(bad), len(common), float(len(bad)), 0.0, not bad)
+
+
+def stats(a):
+    _, _, ours = read_dof(os.path.join(a.ours, f"DOF.OUT.{a.n_ours}"))
+    _, _, ref = read_dof(os.path.join(a.ref, f"DOF.OUT.{a.n_ref}"))
+    report("same bodies", len(ours), len(ref), float(len(set(ours) ^ set(ref))), 0.0, set(ours) == set(ref))
+    free = [b for b in ref if abs(ref[b][0]).max() > 0 or abs(ref[b][1]).max() > 0]
+    ho = sum(ours[b][0][1] for b in free) / len(free)
+    hr = sum(ref[b][0][1] for b in free) / len(free)
+    report("mean vertical displacement of moving bodies (m)", f"{ho:.5f}", f"{hr:.5f}", abs(ho - hr), a.htol,
+           abs(ho - hr) <= a.htol)
+    vo = read_vloc(os.path.join(a.ours, f"Vloc_Rloc.OUT.{a.n_ours}"))
+    vr = read_vloc(os.path.join(a.ref, f"Vloc_Rloc.OUT.{a.n_ref}"))
+    co = sum(1 for r in vo.values() if r["rln"] != 0.0)
+    cr = sum(1 for r in vr.values() if r["rln"] != 0.0)
+    report("interactions with a reaction", co, cr, abs(co - cr) / max(cr, 1), a.ctol, abs(co - cr) <= a.ctol * max(cr, 1))
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("mode", choices=["exact", "stats"])
+    p.add_argument("ours")
+    p.add_argument("n_ours", type=int)
+    p.add_argument("ref")
+    p.add_argument("n_ref", type=int)
+    p.add_argument("--xtol", type=float, default=2e-7)
+    p.add_argument("--vtol", type=float, default=1e-5)
+    p.add_argument("--rtol", type=float, default=1e-4)
+    p.add_argument("--vfloor", type=float, default=1e-9)
+    p.add_argument("--rfloor", type=float, default=1e-9)
+    p.add_argument("--ctol", type=float, default=0.15)
+    p.add_argument("--htol", type=float, default=0.005)
+    a = p.parse_args()
+    exact(a) if a.mode == "exact" else stats(a)
+    n_fail = results.count(False)
+    print(f"{results.count(True)} passed, {n_fail} failed")
+    sys.exit(1 if n_fail else 0)
+
+
+if __name__ == "__main__":
+    main()
