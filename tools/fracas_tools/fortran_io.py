@@ -7,6 +7,7 @@ counted from 1 as in the format descriptions of doc/tools.md and
 """
 
 import math
+import re
 
 __all__ = ["DatboxError", "e14", "d14", "field", "parse_real", "parse_int"]
 
@@ -51,6 +52,9 @@ def field(line, c1, c2):
     return line[c1 - 1:c2].ljust(c2 - c1 + 1)
 
 
+_BARE_EXPONENT = re.compile(r"^([+-]?(?:\d+\.?\d*|\.\d+))([+-]\d+)$")
+
+
 def parse_real(line, c1, c2, path="?", lineno=0, what="value", blank_ok=True):
     """Read a real from columns c1..c2 like a Fortran D/E edit descriptor:
     blanks read as 0, 'D' or 'd' exponents accepted."""
@@ -59,12 +63,18 @@ def parse_real(line, c1, c2, path="?", lineno=0, what="value", blank_ok=True):
         if blank_ok:
             return 0.0
         raise DatboxError(path, lineno, c1, f"{what}: expected a number in columns {c1}-{c2}")
-    t = s.replace("D", "E").replace("d", "E")
+    t = s.replace(" ", "").replace("D", "E").replace("d", "E")
+    m = _BARE_EXPONENT.match(t)          # Fortran's 0.1234567-100 (no exponent letter)
+    if m:
+        t = m.group(1) + "E" + m.group(2)
     try:
-        return float(t)
+        x = float(t)
     except ValueError:
+        x = None
+    if x is None or not math.isfinite(x):
         raise DatboxError(path, lineno, c1,
-                          f"{what}: cannot read {s!r} (columns {c1}-{c2}) as a number") from None
+                          f"{what}: cannot read {s!r} (columns {c1}-{c2}) as a number")
+    return x
 
 
 def parse_int(line, c1, c2, path="?", lineno=0, what="integer", blank_ok=False):
