@@ -51,7 +51,7 @@ contains
         out_dir = argument(i)
       case ('--set')
         i = i + 1
-        settings = [settings, [character(len=1024) :: argument(i)]]
+        settings = [character(len=1024) :: settings, argument(i)]
       case ('--version')
         write (output_unit, '(a)') 'fracas '//version_string
         return
