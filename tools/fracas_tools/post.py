@@ -24,7 +24,6 @@ crashed between two flushes may leave them differing by one row).
 """
 
 import math
-import os
 from pathlib import Path
 
 import numpy as np
@@ -845,8 +844,12 @@ def plot_force_network(run, out, snapshot=-1, window=None, max_width=None):
     segs, widths, colors = [], [], []
     fmax = float(np.abs(rn[ok]).max()) if ok.any() else 0.0
     if fmax > 0:
+        # widest line about one grain radius, in points (figure about 7 in wide)
         r = np.asarray(run.bodies.get("radius", np.ones(run.n_bodies)), dtype=float)
-        wmax = max_width or 6.0
+        rg = float(np.median(r[mask])) if mask.any() else float(np.median(r))
+        ext = _grain_extent(run, snap, mask) if mask.any() else (0.0, 1.0, 0.0, 1.0)
+        span = max(ext[1] - ext[0], ext[3] - ext[2], 1e-300)
+        wmax = max_width or float(np.clip(rg / span * 5.5 * 72.0, 0.8, 6.0))
         for k in np.nonzero(ok)[0]:
             a, b = ci[k], ai[k]
             pa = snap.pos[a, :2]

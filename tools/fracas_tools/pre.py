@@ -20,7 +20,6 @@ Example::
 """
 
 import math
-import os
 import warnings
 from pathlib import Path
 

@@ -2,7 +2,6 @@
 deck -> fracas -> fracas.h5 -> check-h5 -> report when a built solver is found."""
 
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
