@@ -824,7 +824,10 @@ class Case:
         for b in self.bodies:
             if not b.driven:
                 continue
-            out += ["$bdyty", f" {b.model}{b.number:7d}", "$nodty", " NO3xx      1",
+            # pylmgc90 ends the number at column 13; LMGC90 reads I7 at 9-15, so
+            # numbers of 6 digits or more use that layout
+            num = f"{b.number:7d}" if b.number < 100000 else f"  {b.number:7d}"
+            out += ["$bdyty", f" {b.model}{num}", "$nodty", " NO3xx      1",
                     "$dofty  numbr [CT......+......AMP..*..cos.(..OMEGA.*.time.+.PHI..)]...*..."
                     "[RAMPI.....+.....RAMP.*.time]"]
             out += [d.line() for d in b.driven]

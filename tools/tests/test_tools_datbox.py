@@ -149,6 +149,19 @@ def test_fixed_columns(tmp_path):
     assert [float(grav[c0 - 1:c0 + 13]) for c0 in (25, 46, 67)] == [0.0, -9.81, 0.0]
 
 
+def test_large_body_numbers_in_drv_dof(tmp_path):
+    c = Case()
+    c.add_material("STONE", 1.0)
+    b1 = c.add_disk((0, 0), 0.1, "STONE").fix()
+    b2 = c.add_disk((1, 0), 0.1, "STONE").fix()
+    b1.number, b2.number = 99999, 100000          # as in a deck of 100000 bodies
+    text = c.drv_dof_text().splitlines()
+    assert " RBDY2  99999" in text and " RBDY2   100000" in text   # LMGC90 reads I7 at 9-15
+    p = tmp_path / "DRV_DOF.DAT"
+    p.write_text("\n".join(text) + "\n")
+    assert sorted(datbox.read_drv_dof(p)) == [99999, 100000]
+
+
 def test_number_formats():
     assert e14(0.0) == " 0.0000000e+00"
     assert e14(-1.8070036e-18, "E") == "-1.8070036E-18"
