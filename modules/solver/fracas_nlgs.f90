@@ -10,7 +10,7 @@ module fracas_nlgs
   use fracas_rbdy2, only: rbdy2_t
   use fracas_contacts, only: contacts_t
   use fracas_contact_laws, only: law_t, law_shift, law_friction
-  use fracas_local_solver, only: coulomb_2d, natural_map_2d
+  use fracas_local_solver, only: gs_sweep_2d, natural_map_2d, inverse_block
   use fracas_errors, only: fatal
   implicit none
   private
@@ -43,6 +43,9 @@ module fracas_nlgs
     type(rng_t) :: rng
     integer, allocatable :: order(:)
     real(wp), allocatable :: qfree(:, :)   !< (2,n) free local velocity incl. law shift
+    integer, allocatable :: body(:, :)     !< (2,n) candidate, antagonist body (packed for the sweep)
+    real(wp), allocatable :: geo(:, :)     !< (6,n) normal and lever arms (packed for the sweep)
+    real(wp), allocatable :: wi(:, :)      !< (6,n) inverse_block of each contact
   end type nlgs_t
 
 contains
@@ -112,10 +115,16 @@ contains
     n = c%n
     report%sweeps = 0
     if (allocated(solver%order)) then
-      if (size(solver%order) < n) deallocate (solver%order, solver%qfree)
+      if (size(solver%order) < n) deallocate (solver%order, solver%qfree, solver%body, solver%geo, solver%wi)
     end if
-    if (.not. allocated(solver%order)) allocate (solver%order(max(n, 16)), solver%qfree(2, max(n, 16)))
+    if (.not. allocated(solver%order)) allocate (solver%order(max(n, 16)), solver%qfree(2, max(n, 16)), &
+                                                 solver%body(2, max(n, 16)), solver%geo(6, max(n, 16)), &
+                                                 solver%wi(6, max(n, 16)))
     do k = 1, n
+      solver%body(:, k) = [c%cdb(k), c%anb(k)]
+      solver%geo(1:2, k) = c%normal(:, k)
+      solver%geo(3:6, k) = c%lever(:, k)
+      if (c%active(k)) solver%wi(:, k) = inverse_block(c%w(1, k), c%w(2, k), c%w(3, k), c%w(4, k), c%mu(k))
       solver%qfree(:, k) = contact_velocity(c, k, b%v) + c%shift(:, k)
       if (c%active(k)) call inject(k, c%r(1, k), c%r(2, k))
     end do
@@ -175,51 +184,13 @@ contains
       b%v(3, o) = b%v(3, o) - b%inv_mass(3, o) * (dt * c%lever(3, k) + dn * c%lever(4, k))
     end subroutine inject
 
-    !> One Gauss–Seidel sweep; with check, accumulate LMGC90's norm sums.
+    !> One Gauss–Seidel sweep; with check, LMGC90's norm sums of this sweep.
     subroutine sweep(check)
       logical, intent(in) :: check
-      integer :: ii, k, status
-      real(wp) :: u(2), uft, ufn, rt, rn, rt0, rn0, dut, dun, du2, rbt, rbn, wr0(2), wr1(2), relax
-      relax = solver%s%relax
-      if (check) then
-        sums = 0.0_wp
-        maxes = 0.0_wp
-      end if
-      do ii = 1, n
-        k = solver%order(ii)
-        if (.not. c%active(k)) cycle
-        u = contact_velocity(c, k, b%v)
-        rt0 = c%r(1, k); rn0 = c%r(2, k)
-        uft = u(1) - (c%w(1, k) * rt0 + c%w(2, k) * rn0) + c%shift(1, k)
-        ufn = u(2) - (c%w(3, k) * rt0 + c%w(4, k) * rn0) + c%shift(2, k)
-        call coulomb_2d(uft, ufn, c%w(1, k), c%w(2, k), c%w(3, k), c%w(4, k), c%mu(k), rt, rn, status)
-        c%status(k) = status
-        if (check) then
-          ! dU = W (r_old - r_new); rbar = mean reaction; WR for the normalisation.
-          dut = c%w(1, k) * (rt0 - rt) + c%w(2, k) * (rn0 - rn)
-          dun = c%w(3, k) * (rt0 - rt) + c%w(4, k) * (rn0 - rn)
-          du2 = dut**2 + dun**2
-          rbt = 0.5_wp * (rt0 + rt); rbn = 0.5_wp * (rn0 + rn)
-          wr0 = [c%w(1, k) * rt0 + c%w(2, k) * rn0, c%w(3, k) * rt0 + c%w(4, k) * rn0]
-          wr1 = [c%w(1, k) * rt + c%w(2, k) * rn, c%w(3, k) * rt + c%w(4, k) * rn]
-          if (rbt /= 0.0_wp .or. rbn /= 0.0_wp) then
-            sums(1) = sums(1) + du2
-            sums(2) = sums(2) + du2 * (rbt**2 + rbn**2)
-            sums(3) = sums(3) + rbt * dut + rbn * dun
-            sums(4) = sums(4) + 0.5_wp * (dot_product(wr0, [rt0, rn0]) + dot_product(wr1, [rt, rn]))
-            sums(5) = sums(5) + 0.5_wp * (sum(wr0**2) + sum(wr1**2))
-            sums(6) = sums(6) + 1.0_wp
-            maxes(1) = max(maxes(1), du2)
-            maxes(2) = max(maxes(2), du2 * (rbt**2 + rbn**2))
-          end if
-        end if
-        if (relax /= 1.0_wp) then
-          rt = relax * rt + (1.0_wp - relax) * rt0
-          rn = relax * rn + (1.0_wp - relax) * rn0
-        end if
-        c%r(1, k) = rt; c%r(2, k) = rn
-        if (rt /= rt0 .or. rn /= rn0) call inject(k, rt - rt0, rn - rn0)
-      end do
+      real(wp) :: s6(6)
+      call gs_sweep_2d(solver%order(1:n), c%active, solver%body, solver%geo, c%w, solver%wi, c%shift, c%mu, c%r, &
+                       c%status, b%v, b%inv_mass, solver%s%relax, check, s6, maxes)
+      if (check) sums(1:6) = s6
     end subroutine sweep
 
     !> LMGC90's normalised errors from the sums of the last check sweep.

@@ -20,11 +20,12 @@ module fracas_output
   public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
             output_close, series_names
 
-  integer, parameter :: n_series = 19
+  integer, parameter :: n_series = 21
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
     'step', 'time', 'contacts', 'active_contacts', 'sweeps', 'converged', 'residual_natural_map', &
     'residual_onepq', 'quad_dv', 'maxm_dv', 'mean_dvor', 'kinetic_energy', 'work_gravity', &
-    'work_forces', 'work_supports', 'dissipated', 'balance_error', 'mean_overlap', 'max_overlap']
+    'work_forces', 'work_supports', 'dissipated', 'balance_error', 'mean_overlap', 'max_overlap', &
+    'solve_time', 'step_time']
   integer, parameter :: n_outline = 24   !< segments of a circle outline
 
   type :: output_t
@@ -272,7 +273,7 @@ contains
       real(rep%nlgs%nactive, wp), real(rep%nlgs%sweeps, wp), merge(1.0_wp, 0.0_wp, rep%nlgs%converged), &
       rep%nlgs%residual, rep%nlgs%residual_onepq, rep%nlgs%quad_dv, rep%nlgs%maxm_dv, rep%nlgs%mean_dvor, &
       rep%kinetic, sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, balance, &
-      rep%mean_overlap, rep%max_overlap])
+      rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds])
   end subroutine output_series
 
   subroutine output_close(o)

@@ -3,7 +3,7 @@
 !> free velocity -> detection at the theta configuration -> warm start ->
 !> NLGS -> velocity and position update -> history for the next step.
 module fracas_scene
-  use fracas_kinds, only: wp
+  use fracas_kinds, only: wp, i8
   use fracas_deck, only: deck_t
   use fracas_errors, only: input_error
   use fracas_ids, only: inter_id, status_id, st_noact
@@ -26,6 +26,8 @@ module fracas_scene
     integer :: contacts = 0
     real(wp) :: kinetic = 0.0_wp
     real(wp) :: mean_overlap = 0.0_wp, max_overlap = 0.0_wp
+    real(wp) :: solve_seconds = 0.0_wp   !< wall time of the contact solve
+    real(wp) :: step_seconds = 0.0_wp    !< wall time of the whole step
   end type step_report_t
 
   type :: scene_t
@@ -166,7 +168,9 @@ contains
     type(scene_t), intent(inout) :: sc
     type(step_report_t), intent(out) :: rep
     integer :: k, pos, nover
+    integer(i8) :: t0, t1, t2, rate
     real(wp) :: margin, vmax, gap_end, dx(3)
+    call system_clock(t0, rate)
     associate (b => sc%bodies, c => sc%contacts)
       call rbdy2_begin_step(b, sc%time, sc%h, sc%theta)
       call rbdy2_detection_coor(b, sc%h, sc%theta, sc%q)
@@ -191,7 +195,10 @@ contains
         end if
       end do
       call nlgs_prepare(c, b, sc%laws, sc%h)
+      call system_clock(t1)
       call nlgs_solve(sc%solver, c, b, rep%nlgs)
+      call system_clock(t2)
+      rep%solve_seconds = real(t2 - t1, wp) / real(rate, wp)
 
       ! Energy audit of the step (before the begin state is overwritten).
       do k = 1, b%n
@@ -229,6 +236,8 @@ contains
       rep%contacts = c%n
       rep%kinetic = rbdy2_kinetic_energy(b)
     end associate
+    call system_clock(t2)
+    rep%step_seconds = real(t2 - t0, wp) / real(rate, wp)
   end subroutine scene_step
 
   !> Work done on the free bodies by velocity-driven dofs through the contacts
