@@ -49,7 +49,7 @@ def test_demo_info_rewrite(tmp_path):
 
 
 def test_check_h5_report_summary(tmp_path):
-    run_cli("synthetic", tmp_path / "syn")
+    run_cli("synthetic", "--nx", "4", "--ny", "2", tmp_path / "syn")
     h5 = tmp_path / "syn" / "OUTBOX" / "fracas.h5"
     r = run_cli("check-h5", h5)
     assert r.stdout.strip().endswith("OK")

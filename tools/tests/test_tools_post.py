@@ -190,13 +190,14 @@ def test_incomplete_run_and_missing_series(tmp_path):
 
 
 def test_report_without_deck_and_without_snapshots(tmp_path):
-    p = synthetic.make_h5(tmp_path / "alone" / "OUTBOX" / "fracas.h5", nx=6, ny=3)
+    p = synthetic.make_h5(tmp_path / "alone" / "OUTBOX" / "fracas.h5", nx=6, ny=3, n_steps=20,
+                          snapshot_every=20)
     text = post.report(tmp_path / "alone").read_text()
     assert "DATBOX was not found" in text and "force_network.png" in text
     with post.Run(p) as run:
         assert post.particle_mask(run).sum() == 6 * 2 + 5   # walls guessed from their radius
     q = tmp_path / "nosnap.h5"
-    synthetic.make_h5(q, nx=4, ny=2)
+    synthetic.make_h5(q, nx=4, ny=2, n_steps=20)
     with h5py.File(q, "a") as f:
         del f["snapshots"]
         f.create_group("snapshots")
