@@ -6,6 +6,8 @@ Prints one line per quantity and exits 1 if any check fails.
 """
 import math
 import sys
+
+sys.dont_write_bytecode = True
 from pathlib import Path
 
 import numpy as np

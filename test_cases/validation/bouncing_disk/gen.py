@@ -6,6 +6,8 @@ The parameters below are also read by check.py (import gen), so the check and th
 deck cannot disagree. Run once; the generated DATBOX is committed.
 """
 import sys
+
+sys.dont_write_bytecode = True
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
