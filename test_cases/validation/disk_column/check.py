@@ -20,20 +20,6 @@ FLOOR, LEFT, RIGHT = 1, 2, 3
 FIRST_DISK = 4              # disks are bodies 4..13, bottom to top
 
 
-def gauss_seidel_rate(masses):
-    """Spectral radius of Gauss-Seidel on the column's Delassus matrix (contact k
-    between disk k-1 (or the floor) and disk k; frictionless, vertical normals)."""
-    n = len(masses)
-    w = np.zeros((n, n))
-    for k in range(n):
-        w[k, k] = 1.0 / masses[k] + (1.0 / masses[k - 1] if k > 0 else 0.0)
-        if k > 0:
-            w[k, k - 1] = w[k - 1, k] = -1.0 / masses[k - 1]
-    lower = np.tril(w)
-    upper = np.triu(w, 1)
-    return float(max(abs(np.linalg.eigvals(-np.linalg.solve(lower, upper)))))
-
-
 def column_reactions(res, isnap):
     """Normal force of contact k (0: floor - disk 1, k: disk k - disk k+1)."""
     n = len(gen.RADII)
@@ -52,7 +38,7 @@ def main():
     m = res.mass[disks]
     weight_above = np.cumsum((m * gen.G)[::-1])[::-1]        # contact k carries disks k..n
     tol = gen.NLGS_TOL
-    rho = gauss_seidel_rate(m)
+    rho = valtools.chain_gauss_seidel_rate(m, grounded=True)
     ck = valtools.Checker("disk_column")
 
     # 1. settled reactions (last step) = weight above, to the NLGS tolerance
