@@ -11,7 +11,8 @@ RUN_DIR is the directory that holds OUTBOX/ (the case directory, or the
 ``--output`` directory of the run). CASE_DIR (default: the ``case_dir`` attribute
 of fracas.h5, then RUN_DIR) holds DATBOX/.
 
-A reference is made (never by hand) with::
+A reference is made (never by hand) with tools/regression/regenerate.py (runs the
+case, then calls this), or directly from a finished run::
 
     /usr/bin/python3 tools/regression/tagged.py RUN_DIR --case CASE_DIR \\
         --make-reference CASE_DIR/reference.tag --tolerances CASE_DIR/tolerances.txt
@@ -61,7 +62,8 @@ solver's reactions, i.e. impulse / time step; "loaded" contact: rn > 0):
   residual_natural_map_max          worst natural-map residual over the run
   residual_natural_map_final
   settle_time                       first time after which the kinetic energy stays below
-                                    1e-6 of its peak
+                                    1e-3 of its peak (lower thresholds are not robust: the
+                                    slow creep of the last grains varies from run to run)
 
 With ``--hash`` a tag ``state_sha256`` (SHA-256 of the bytes of the last snapshot's
 X, V and contact reactions) is added: for determinism checks of two runs on one
@@ -292,7 +294,7 @@ def compute_tags(run_dir, case=None, with_hash=False):
         if tags["work_gravity_total"] else berr
     y_init = ref[:, 1] + x0[:, 1]
     tags["potential_energy_drop"] = float(np.sum(md * abs(g[1]) * (y_init[is_disk] - yd)))
-    above = np.flatnonzero(ke > 1e-6 * ke[ipk])
+    above = np.flatnonzero(ke > 1e-3 * ke[ipk])
     tags["settle_time"] = float(t[above[-1] + 1]) if above.size and above[-1] + 1 < n else float(t[-1])
 
     # ---------------------------------------------------------------- overlaps
@@ -491,11 +493,8 @@ def main(argv=None):
     if a.make_reference:
         if not a.tolerances:
             p.error("--make-reference needs --tolerances")
-        cmd = ("/usr/bin/python3 tools/regression/tagged.py RUN_DIR --case "
-               + os.path.relpath(Path(a.case).resolve(), Path(__file__).resolve().parents[2])
-               if a.case else "tools/regression/tagged.py RUN_DIR")
-        cmd += f" --make-reference {os.path.basename(a.make_reference)} --tolerances " \
-               f"{os.path.basename(a.tolerances)}"
+        cmd = ("/usr/bin/python3 tools/regression/tagged.py RUN_DIR --case CASE_DIR "
+               "--make-reference CASE_DIR/reference.tag --tolerances CASE_DIR/tolerances.txt")
         make_reference(tags, read_tolerances(a.tolerances), a.make_reference, cmd)
         print(f"tagged.py: wrote {a.make_reference} ({len(tags)} tags)")
     else:

@@ -7,6 +7,8 @@ well above the cloud), falling under gravity; IQS_CLB friction 0.3 disk/disk and
 disk/wall, alert distance 2 mm (rmin/2); dt = 1e-3 s.
 
     /usr/bin/python3 test_cases/regression/deposit_1000/gen.py     # rewrites ./DATBOX
+    /usr/bin/python3 test_cases/regression/deposit_1000/gen.py --seed 2 --out /tmp/d2
+                                          # another sample of the same deck (sensitivity study)
 
 The committed DATBOX is the output of this script; change the script, not the files.
 """
@@ -28,11 +30,11 @@ NSTEPS = 1000
 TIME_STEP = 1.0e-3
 
 
-def build():
+def build(seed=SEED):
     case = Case(gravity=(0.0, -9.81, 0.0))
     case.add_material("STONE", density=2600.0)
     case.add_material("TDURx", density=1000.0)
-    rng = gen.rng_from(SEED)
+    rng = gen.rng_from(seed)
     radii = gen.uniform_radii(N, RMIN, RMAX, rng)
     disks = gen.deposit_disks(case, radii, WIDTH, "STONE", "BLEUx", rng, method="lattice")
     top = gen.top_of(case, disks)
@@ -48,5 +50,10 @@ def build():
 
 
 if __name__ == "__main__":
-    build().write(HERE)
-    print(f"wrote {HERE / 'DATBOX'}")
+    import argparse
+    p = argparse.ArgumentParser(description="write the deposit_1000 DATBOX")
+    p.add_argument("--seed", type=int, default=SEED, help=f"generator seed (default {SEED})")
+    p.add_argument("--out", default=str(HERE), help="case directory (default: this folder)")
+    a = p.parse_args()
+    build(a.seed).write(a.out)
+    print(f"wrote {Path(a.out) / 'DATBOX'}")

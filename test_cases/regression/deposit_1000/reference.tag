@@ -1,0 +1,45 @@
+# Fracas regression reference, tagged.py format 1.
+# GENERATED: do not edit. Regenerate with
+#   /usr/bin/python3 tools/regression/regenerate.py --fracas build/release/bin/fracas test_cases/regression/deposit_1000
+# name : value : abs=A rel=R   (pass when |run - value| <= A + R*|value|)
+steps                           : 1000                   : abs=0 rel=0
+final_time                      : 1.0000000000000007     : abs=1e-09 rel=0
+n_disks                         : 1000                   : abs=0 rel=0
+contacts_listed_final           : 2400                   : abs=0 rel=0.04
+contacts_loaded_final           : 1714                   : abs=0 rel=0.035
+contacts_disk_wall_final        : 70                     : abs=10 rel=0
+coordination_mean               : 3.288                  : abs=0.12 rel=0
+coordination_with_walls         : 3.358                  : abs=0.12 rel=0
+rattler_fraction                : 0.002                  : abs=0.01 rel=0
+normal_force_mean               : 39.7738043141538       : abs=0 rel=0.2
+normal_force_max                : 331.58651078807037     : abs=0 rel=0.6
+normal_force_std                : 46.12738223719837      : abs=0 rel=0.25
+normal_force_over_mean_p90      : 2.5222437373514595     : abs=0.3 rel=0
+tangential_force_ratio_mean     : 0.4600325521597684     : abs=0.13 rel=0
+sliding_fraction                : 0.0005834305717619603  : abs=0.005 rel=0
+weight_total                    : 2034.6622219123415     : abs=0 rel=1e-10
+wall_vertical_force_over_weight : 1.0000000000000093     : abs=1e-05 rel=0
+floor_force_over_weight         : 0.9412697069337442     : abs=0.2 rel=0
+packing_height                  : 0.38417273572486826    : abs=0.01 rel=0
+com_height                      : 0.1902022648297786     : abs=0.003 rel=0
+solid_fraction_core             : 0.8055522837185632     : abs=0.008 rel=0
+kinetic_energy_final            : 3.3788958798040164e-11 : abs=1e-05 rel=0
+kinetic_energy_peak             : 92.11598725558187      : abs=0 rel=0.03
+time_of_peak_kinetic_energy     : 0.1370000000000001     : abs=0.01 rel=0
+work_gravity_total              : 198.83057608257897     : abs=0 rel=0.02
+dissipated_total                : 198.83057608255933     : abs=0 rel=0.02
+energy_balance_error_max        : 2.5063494002986028e-11 : abs=1e-08 rel=0
+energy_balance_error_rel        : 1.2605452590237717e-13 : abs=1e-10 rel=0
+potential_energy_drop           : 198.83057608258378     : abs=0 rel=0.02
+settle_time                     : 0.2590000000000002     : abs=0.03 rel=0
+max_overlap                     : 3.933586061369705e-06  : abs=1e-05 rel=0
+max_overlap_final               : 3.1518255215457545e-06 : abs=1e-05 rel=0
+max_overlap_over_rmin           : 0.000982386204809745   : abs=0.0025 rel=0
+mean_overlap_final              : 2.024102435903252e-07  : abs=1e-06 rel=0
+sweeps_total                    : 331550                 : abs=0 rel=0.3
+sweeps_mean_per_step            : 331.55                 : abs=0 rel=0.3
+sweeps_max_per_step             : 5750                   : abs=0 rel=0.5
+contact_sweeps_total            : 678753700              : abs=0 rel=0.3
+nonconverged_steps              : 0                      : abs=0 rel=0
+residual_natural_map_max        : 8.539927309864294e-05  : abs=0.00015 rel=0
+residual_natural_map_final      : 1.0961573141498181e-16 : abs=1e-06 rel=0
