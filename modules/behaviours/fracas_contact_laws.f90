@@ -13,6 +13,10 @@ module fracas_contact_laws
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
             law_vel_sgr_clb, law_rst_ds_clb
 
+  !> Gaps below this (m) count as closed for the laws that act only on closed
+  !> contacts: far below any physical length, far above round-off of coordinates.
+  real(wp), parameter :: closed_gap = 1.0e-14_wp
+
   integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
                         law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
                         law_rst_ds_clb = 7
@@ -128,10 +132,11 @@ contains
       ! Signorini on the predicted end gap: overlaps are corrected.
       shift(2) = gap / h
     case (law_vel_sgr_clb)
-      active = gap <= 0.0_wp
+      active = gap <= closed_gap
     case (law_rst_clb, law_rst_ds_clb)
-      ! Newton restitution once the contact is closed: u+ + e u- >= 0.
-      if (gap <= 0.0_wp) then
+      ! Newton restitution once the contact is closed: u+ + e u- >= 0. A gap
+      ! within closed_gap of zero is round-off of bodies placed in contact.
+      if (gap <= closed_gap) then
         shift(1) = law%restt * u_begin(1)
         shift(2) = law%restn * u_begin(2)
       else

@@ -1,4 +1,4 @@
-!> Contactors: the shapes attached to bodies (DISKx, xKSID, JONCx), as one flat
+!> Contactors: the shapes attached to bodies (DISKx, xKSID, JONCx, POLYG), as one flat
 !> list over all bodies. A contactor maps to its body; its geometry is given in
 !> the body frame and placed with the body's configuration.
 module fracas_contactors
@@ -8,9 +8,9 @@ module fracas_contactors
   implicit none
   private
   public :: tactors_t, tactors_build, tactor_center, tactor_kind_name, body_area_inertia, &
-            tk_disk, tk_xksid, tk_jonc
+            polygon_area_moments, tactor_vertices, tk_disk, tk_xksid, tk_jonc, tk_polyg
 
-  integer, parameter :: tk_disk = 1, tk_xksid = 2, tk_jonc = 3
+  integer, parameter :: tk_disk = 1, tk_xksid = 2, tk_jonc = 3, tk_polyg = 4
   real(wp), parameter :: pi = acos(-1.0_wp)
 
   type :: tactors_t
@@ -24,6 +24,8 @@ module fracas_contactors
     real(wp), allocatable :: ax1(:), ax2(:) !< JONCx half length, half thickness
     real(wp), allocatable :: shift(:, :)   !< (2,n) offset in the body frame
     real(wp), allocatable :: bound(:)      !< radius of a circle around the contactor centre holding it
+    integer, allocatable :: vfirst(:)      !< (n+1) POLYG: vertices vfirst(k) .. vfirst(k+1)-1 of vert
+    real(wp), allocatable :: vert(:, :)    !< (2,*) POLYG vertices in the body frame, counter-clockwise
   end type tactors_t
 
 contains
@@ -35,6 +37,7 @@ contains
     case (tk_disk); name = 'DISKx'
     case (tk_xksid); name = 'xKSID'
     case (tk_jonc); name = 'JONCx'
+    case (tk_polyg); name = 'POLYG'
     case default; name = '?????'
     end select
   end function tactor_kind_name
@@ -43,14 +46,20 @@ contains
   subroutine tactors_build(bodies, t)
     type(body_input_t), intent(in) :: bodies(:)
     type(tactors_t), intent(out) :: t
-    integer :: ib, it, k, n, counts(3)
+    integer :: ib, it, k, n, counts(4), nv
     n = 0
+    nv = 0
     do ib = 1, size(bodies)
-      if (allocated(bodies(ib)%tactors)) n = n + size(bodies(ib)%tactors)
+      if (.not. allocated(bodies(ib)%tactors)) cycle
+      n = n + size(bodies(ib)%tactors)
+      do it = 1, size(bodies(ib)%tactors)
+        if (allocated(bodies(ib)%tactors(it)%vertices)) nv = nv + size(bodies(ib)%tactors(it)%vertices, 2)
+      end do
     end do
     t%n = n
     allocate (t%kind(n), t%body(n), t%rank(n), t%kind_index(n), t%color(n), t%radius(n), t%ax1(n), &
-              t%ax2(n), t%shift(2, n), t%bound(n))
+              t%ax2(n), t%shift(2, n), t%bound(n), t%vfirst(n + 1), t%vert(2, nv))
+    t%vfirst(1) = 1
     k = 0
     counts = 0
     do ib = 1, size(bodies)
@@ -65,9 +74,11 @@ contains
             t%kind(k) = tk_xksid
           case ('JONCx')
             t%kind(k) = tk_jonc
+          case ('POLYG')
+            t%kind(k) = tk_polyg
           case default
             call input_error(inp%src%file, inp%src%line, 2, "contactor '"//inp%kind// &
-              "' is read but not supported by the solver yet (supported: DISKx, xKSID, JONCx)")
+              "' is read but not supported by the solver yet (supported: DISKx, DISKb, xKSID, JONCx, POLYG)")
           end select
           counts(t%kind(k)) = counts(t%kind(k)) + 1
           t%kind_index(k) = counts(t%kind(k))
@@ -78,9 +89,16 @@ contains
           t%ax1(k) = inp%ax1
           t%ax2(k) = inp%ax2
           t%shift(:, k) = inp%shift
+          t%vfirst(k + 1) = t%vfirst(k)
           select case (t%kind(k))
           case (tk_jonc)
             t%bound(k) = inp%ax1 + inp%ax2
+          case (tk_polyg)
+            ! Vertices stay in the body frame; the contactor centre is the body node.
+            nv = size(inp%vertices, 2)
+            t%vert(:, t%vfirst(k):t%vfirst(k) + nv - 1) = inp%vertices
+            t%vfirst(k + 1) = t%vfirst(k) + nv
+            t%bound(k) = sqrt(maxval(sum(inp%vertices**2, dim=1)))
           case default
             t%bound(k) = inp%radius
           end select
@@ -100,13 +118,52 @@ contains
     c(2) = q(2) + sn * t%shift(1, k) + cs * t%shift(2, k)
   end function tactor_center
 
+  !> Vertices of POLYG contactor k placed with the body configuration q.
+  pure function tactor_vertices(t, k, q) result(p)
+    type(tactors_t), intent(in) :: t
+    integer, intent(in) :: k
+    real(wp), intent(in) :: q(3)
+    real(wp), allocatable :: p(:, :)
+    real(wp) :: cs, sn
+    integer :: j, i
+    cs = cos(q(3)); sn = sin(q(3))
+    allocate (p(2, t%vfirst(k + 1) - t%vfirst(k)))
+    do j = t%vfirst(k), t%vfirst(k + 1) - 1
+      i = j - t%vfirst(k) + 1
+      p(1, i) = q(1) + cs * t%vert(1, j) - sn * t%vert(2, j)
+      p(2, i) = q(2) + sn * t%vert(1, j) + cs * t%vert(2, j)
+    end do
+  end function tactor_vertices
+
+  !> Area, centroid and polar second moment about the origin of a simple
+  !> polygon (counter-clockwise vertices), by the shoelace formulas.
+  pure subroutine polygon_area_moments(v, area, centroid, polar)
+    real(wp), intent(in) :: v(:, :)
+    real(wp), intent(out) :: area, centroid(2), polar
+    integer :: i, j, n
+    real(wp) :: cr
+    n = size(v, 2)
+    area = 0.0_wp; centroid = 0.0_wp; polar = 0.0_wp
+    do i = 1, n
+      j = mod(i, n) + 1
+      cr = v(1, i) * v(2, j) - v(1, j) * v(2, i)
+      area = area + cr
+      centroid = centroid + cr * (v(:, i) + v(:, j))
+      polar = polar + cr * (v(1, i)**2 + v(1, i) * v(1, j) + v(1, j)**2 + &
+                            v(2, i)**2 + v(2, i) * v(2, j) + v(2, j)**2)
+    end do
+    area = 0.5_wp * area
+    centroid = centroid / (6.0_wp * area)
+    polar = polar / 12.0_wp
+  end subroutine polygon_area_moments
+
   !> Area and polar second moment (about the body node) of a body's contactors,
   !> per unit density and unit thickness; used when avrd/gyrd are given as 0.
   subroutine body_area_inertia(body, area, inertia)
     type(body_input_t), intent(in) :: body
     real(wp), intent(out) :: area, inertia
     integer :: it
-    real(wp) :: a, i0, arect, acap, d, e
+    real(wp) :: a, i0, arect, acap, d, e, cen(2)
     area = 0.0_wp
     inertia = 0.0_wp
     if (.not. allocated(body%tactors)) return
@@ -122,6 +179,12 @@ contains
           a = arect + 2.0_wp * acap
           i0 = arect * (tc%ax1**2 + tc%ax2**2) / 3.0_wp + &
                2.0_wp * (acap * 0.5_wp * tc%ax2**2 + acap * (d**2 + 2.0_wp * d * e))
+        case ('POLYG')
+          ! Vertices are already in the body frame: the moment is about the node.
+          call polygon_area_moments(tc%vertices, a, cen, i0)
+          area = area + a
+          inertia = inertia + i0
+          cycle
         case default   ! DISKx, xKSID: a full disk
           a = pi * tc%radius**2
           i0 = 0.5_wp * a * tc%radius**2

@@ -15,6 +15,8 @@ module fracas_contacts
     integer, allocatable :: cd(:), an(:)     !< candidate / antagonist contactor
     integer, allocatable :: cdb(:), anb(:)   !< their bodies
     integer, allocatable :: law(:)           !< index in the law table
+    integer, allocatable :: sub(:)           !< key of the contact within its pair (candidate polygon vertex, else 0)
+    integer, allocatable :: cdver(:), anseg(:)  !< polygon vertex / edge involved (0 if none)
     integer, allocatable :: status(:), status_begin(:)
     real(wp), allocatable :: normal(:, :)    !< (2,n), from antagonist to candidate; t = (n2, -n1)
     real(wp), allocatable :: point(:, :)     !< (2,n) contact point (detection configuration)
@@ -33,7 +35,7 @@ module fracas_contacts
   type :: history_t
     integer :: n = 0
     integer, allocatable :: first(:)         !< (ntactors+1) offsets into the lists
-    integer, allocatable :: inter(:), an(:), status(:)
+    integer, allocatable :: inter(:), an(:), sub(:), status(:)
     real(wp), allocatable :: force(:, :)     !< (2,n) reaction / time step
   end type history_t
 
@@ -49,13 +51,15 @@ contains
       call free_all()
     end if
     cap = max(16, n + n / 2)
-    allocate (c%inter(cap), c%cd(cap), c%an(cap), c%cdb(cap), c%anb(cap), c%law(cap), c%status(cap), &
+    allocate (c%inter(cap), c%cd(cap), c%an(cap), c%cdb(cap), c%anb(cap), c%law(cap), c%sub(cap), &
+              c%cdver(cap), c%anseg(cap), c%status(cap), &
               c%status_begin(cap), c%normal(2, cap), c%point(2, cap), c%gap(cap), c%lever(4, cap), &
               c%w(4, cap), c%shift(2, cap), c%mu(cap), c%active(cap), c%r(2, cap), c%u(2, cap), &
               c%u_begin(2, cap))
   contains
     subroutine free_all()
-      deallocate (c%inter, c%cd, c%an, c%cdb, c%anb, c%law, c%status, c%status_begin, c%normal, &
+      deallocate (c%inter, c%cd, c%an, c%cdb, c%anb, c%law, c%sub, c%cdver, c%anseg, c%status, &
+                  c%status_begin, c%normal, &
                   c%point, c%gap, c%lever, c%w, c%shift, c%mu, c%active, c%r, c%u, c%u_begin)
     end subroutine free_all
   end subroutine contacts_reserve
@@ -65,16 +69,17 @@ contains
     c%n = 0
   end subroutine contacts_clear
 
-  !> Group records (cd, an, inter, status, force) by candidate contactor.
-  subroutine history_build(hist, ntactors, cd, an, inter, status, force)
+  !> Group records (cd, an, sub, inter, status, force) by candidate contactor.
+  subroutine history_build(hist, ntactors, cd, an, sub, inter, status, force)
     type(history_t), intent(out) :: hist
-    integer, intent(in) :: ntactors, cd(:), an(:), inter(:), status(:)
+    integer, intent(in) :: ntactors, cd(:), an(:), sub(:), inter(:), status(:)
     real(wp), intent(in) :: force(:, :)
     integer :: k, n, pos
     integer, allocatable :: fill(:)
     n = size(cd)
     hist%n = n
-    allocate (hist%first(ntactors + 1), hist%inter(n), hist%an(n), hist%status(n), hist%force(2, n))
+    allocate (hist%first(ntactors + 1), hist%inter(n), hist%an(n), hist%sub(n), hist%status(n), &
+              hist%force(2, n))
     hist%first = 0
     do k = 1, n
       hist%first(cd(k) + 1) = hist%first(cd(k) + 1) + 1
@@ -89,6 +94,7 @@ contains
       fill(cd(k)) = pos + 1
       hist%inter(pos) = inter(k)
       hist%an(pos) = an(k)
+      hist%sub(pos) = sub(k)
       hist%status(pos) = status(k)
       hist%force(:, pos) = force(:, k)
     end do
@@ -102,19 +108,20 @@ contains
     real(wp), intent(in) :: h
     integer :: n
     n = c%n
-    call history_build(hist, ntactors, c%cd(1:n), c%an(1:n), c%inter(1:n), c%status(1:n), c%r(:, 1:n) / h)
+    call history_build(hist, ntactors, c%cd(1:n), c%an(1:n), c%sub(1:n), c%inter(1:n), c%status(1:n), &
+                       c%r(:, 1:n) / h)
   end subroutine history_from_contacts
 
-  !> Index of the past contact (inter, cd, an), 0 if there is none.
-  pure integer function history_find(hist, inter, cd, an) result(pos)
+  !> Index of the past contact (inter, cd, an, sub), 0 if there is none.
+  pure integer function history_find(hist, inter, cd, an, sub) result(pos)
     type(history_t), intent(in) :: hist
-    integer, intent(in) :: inter, cd, an
+    integer, intent(in) :: inter, cd, an, sub
     integer :: k
     pos = 0
     if (.not. allocated(hist%first)) return
     if (cd + 1 > size(hist%first)) return
     do k = hist%first(cd), hist%first(cd + 1) - 1
-      if (hist%an(k) == an .and. hist%inter(k) == inter) then
+      if (hist%an(k) == an .and. hist%inter(k) == inter .and. hist%sub(k) == sub) then
         pos = k
         return
       end if

@@ -5,12 +5,14 @@ module fracas_detection
   use fracas_kinds, only: wp
   use fracas_deck, only: see_rule_input_t
   use fracas_errors, only: input_error
-  use fracas_ids, only: i_dkdkx, i_dkjcx, i_dkkdx, st_noctc
-  use fracas_contactors, only: tactors_t, tactor_center, tk_disk, tk_xksid, tk_jonc
+  use fracas_ids, only: i_dkdkx, i_dkjcx, i_dkkdx, i_dkplx, i_plplx, i_pljcx, st_noctc
+  use fracas_contactors, only: tactors_t, tactor_center, tactor_vertices, tk_disk, tk_xksid, tk_jonc, tk_polyg
   use fracas_contacts, only: contacts_t, contacts_reserve
   use fracas_dkdkx, only: dkdkx_geometry
   use fracas_dkjcx, only: dkjcx_geometry
   use fracas_dkkdx, only: dkkdx_geometry
+  use fracas_dkplx, only: dkplx_geometry
+  use fracas_plplx, only: polygon_pair, polygon_contact_t
   implicit none
   private
   public :: detection_t, detection_init, detect_rough, detect_fine
@@ -37,6 +39,9 @@ contains
     if (kcd == tk_disk .and. kan == tk_disk) inter_of = i_dkdkx
     if (kcd == tk_disk .and. kan == tk_jonc) inter_of = i_dkjcx
     if (kcd == tk_disk .and. kan == tk_xksid) inter_of = i_dkkdx
+    if (kcd == tk_disk .and. kan == tk_polyg) inter_of = i_dkplx
+    if (kcd == tk_polyg .and. kan == tk_polyg) inter_of = i_plplx
+    if (kcd == tk_polyg .and. kan == tk_jonc) inter_of = i_pljcx
   end function inter_of
 
   !> Build the see table from the $seety rules. law_nicknames(i) names law i.
@@ -87,12 +92,13 @@ contains
         det%max_alert = max(det%max_alert, s%alert)
       end associate
     end do
-    ! Ordinary disks go into the cell grid; much larger ones (and walls, drums) are "big".
+    ! Ordinary disks and polygons go into the cell grid; much larger ones (and
+    ! walls, drums) are "big" and tested against all.
     allocate (det%small(t%n))
-    radii = pack(t%radius, t%kind == tk_disk)
+    radii = pack(t%bound, t%kind == tk_disk .or. t%kind == tk_polyg)
     rmed = 0.0_wp
     if (size(radii) > 0) rmed = median(radii)
-    det%small = t%kind == tk_disk .and. t%radius <= 10.0_wp * rmed
+    det%small = (t%kind == tk_disk .or. t%kind == tk_polyg) .and. t%bound <= 10.0_wp * rmed
     det%npairs = 0
     allocate (det%pair_cd(0), det%pair_an(0), det%pair_inter(0), det%pair_law(0), det%pair_alert(0))
 
@@ -113,6 +119,7 @@ contains
       select case (kind)
       case (tk_disk); name = 'DISKx'
       case (tk_xksid); name = 'xKSID'
+      case (tk_polyg); name = 'POLYG'
       case default; name = 'JONCx'
       end select
     end function kind_name
@@ -139,7 +146,8 @@ contains
 
   !> Broad phase: every pair of contactors of different bodies, allowed by the
   !> see table, whose bounding circles come within alert + margin. Ordinary
-  !> disks are binned in square cells; big contactors are tested against all.
+  !> disks and polygons are binned in square cells; big contactors are tested
+  !> against all.
   !> movable(b) is false for bodies whose every dof is driven.
   subroutine detect_rough(det, t, q, movable, margin)
     type(detection_t), intent(inout) :: det
@@ -158,7 +166,7 @@ contains
     nsmall = count(det%small)
     bigs = pack([(k, k=1, t%n)], .not. det%small)
     if (nsmall > 0) then
-      rmax = maxval(t%radius, mask=det%small)
+      rmax = maxval(t%bound, mask=det%small)
       size_cell = 2.0_wp * rmax + det%max_alert + margin
       lo = [minval(c(1, :), mask=det%small), minval(c(2, :), mask=det%small)]
       hi = [maxval(c(1, :), mask=det%small), maxval(c(2, :), mask=det%small)]
@@ -299,16 +307,18 @@ contains
 
 
   !> Fine detection of the rough pairs at configuration q: every pair whose gap
-  !> is within its alert distance becomes a contact with its local frame, gap,
-  !> contact point and lever arms.
+  !> is within its alert distance becomes a contact (polygon pairs: up to two)
+  !> with its local frame, gap, contact point and lever arms.
   subroutine detect_fine(det, t, q, c)
     type(detection_t), intent(in) :: det
     type(tactors_t), intent(in) :: t
     real(wp), intent(in) :: q(:, :)
     type(contacts_t), intent(inout) :: c
-    integer :: p, icd, ian, k, bcd, ban
-    real(wp) :: gap, normal(2), point(2), ccd(2), can(2), tang(2), rcd(2), ran(2)
-    call contacts_reserve(c, det%npairs)
+    integer :: p, icd, ian, bcd, ban, iedge, j
+    real(wp) :: gap, normal(2), point(2), ccd(2), can(2)
+    real(wp), allocatable :: pcd(:, :), pan(:, :)
+    type(polygon_contact_t) :: pc
+    call contacts_reserve(c, 2 * det%npairs)
     c%n = 0
     do p = 1, det%npairs
       icd = det%pair_cd(p)
@@ -320,28 +330,66 @@ contains
       select case (det%pair_inter(p))
       case (i_dkdkx)
         call dkdkx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
+        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
       case (i_dkjcx)
         call dkjcx_geometry(ccd, t%radius(icd), can, q(3, ban), t%ax1(ian), t%ax2(ian), gap, normal, point)
+        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
       case (i_dkkdx)
         call dkkdx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
-      case default
-        cycle
+        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+      case (i_dkplx)
+        pan = tactor_vertices(t, ian, q(:, ban))
+        call dkplx_geometry(ccd, t%radius(icd), pan, gap, normal, point, iedge)
+        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, iedge)
+      case (i_plplx)
+        ! The rough pair's antagonist (lower index) is preferred as reference face.
+        pcd = tactor_vertices(t, icd, q(:, bcd))
+        pan = tactor_vertices(t, ian, q(:, ban))
+        call polygon_pair(pan, pcd, det%pair_alert(p), .false., pc)
+        do j = 1, pc%n
+          gap = pc%gap(j); normal = pc%normal; point = pc%point(:, j)
+          if (pc%ref_is_a) then
+            call add(icd, ian, pc%cdver(j), pc%anseg)
+          else
+            call add(ian, icd, pc%cdver(j), pc%anseg)
+          end if
+        end do
+      case (i_pljcx)
+        pcd = tactor_vertices(t, icd, q(:, bcd))
+        call polygon_pair(wall_rectangle(can, q(3, ban), t%ax1(ian), t%ax2(ian)), pcd, det%pair_alert(p), &
+                          .true., pc)
+        do j = 1, pc%n
+          gap = pc%gap(j); normal = pc%normal; point = pc%point(:, j)
+          call add(icd, ian, pc%cdver(j), pc%anseg)
+        end do
       end select
-      if (gap > det%pair_alert(p)) cycle
+    end do
+
+  contains
+
+    !> Append a contact; its history key within the pair is the candidate vertex.
+    subroutine add(kcd, kan, cdver, anseg)
+      integer, intent(in) :: kcd, kan, cdver, anseg
+      integer :: k, b1, b2
+      real(wp) :: tang(2), rcd(2), ran(2)
       c%n = c%n + 1
       k = c%n
+      b1 = t%body(kcd); b2 = t%body(kan)
       c%inter(k) = det%pair_inter(p)
-      c%cd(k) = icd
-      c%an(k) = ian
-      c%cdb(k) = bcd
-      c%anb(k) = ban
+      c%cd(k) = kcd
+      c%an(k) = kan
+      c%cdb(k) = b1
+      c%anb(k) = b2
       c%law(k) = det%pair_law(p)
+      c%sub(k) = cdver
+      c%cdver(k) = cdver
+      c%anseg(k) = anseg
       c%normal(:, k) = normal
       c%point(:, k) = point
       c%gap(k) = gap
       tang = [normal(2), -normal(1)]
-      rcd = point - q(1:2, bcd)
-      ran = point - q(1:2, ban)
+      rcd = point - q(1:2, b1)
+      ran = point - q(1:2, b2)
       c%lever(1, k) = cross(rcd, tang)
       c%lever(2, k) = cross(rcd, normal)
       c%lever(3, k) = cross(ran, tang)
@@ -349,8 +397,21 @@ contains
       c%status(k) = st_noctc
       c%status_begin(k) = st_noctc
       c%r(:, k) = 0.0_wp
-    end do
+    end subroutine add
   end subroutine detect_fine
+
+  !> A JONCx wall as the rectangle of its flat part (counter-clockwise).
+  pure function wall_rectangle(c, angle, ax1, ax2) result(v)
+    real(wp), intent(in) :: c(2), angle, ax1, ax2
+    real(wp) :: v(2, 4), cs, sn
+    integer :: i
+    real(wp), parameter :: sx(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp], sy(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
+    cs = cos(angle); sn = sin(angle)
+    do i = 1, 4
+      v(1, i) = c(1) + cs * sx(i) * ax1 - sn * sy(i) * ax2
+      v(2, i) = c(2) + sn * sx(i) * ax1 + cs * sy(i) * ax2
+    end do
+  end function wall_rectangle
 
   pure real(wp) function cross(a, b)
     real(wp), intent(in) :: a(2), b(2)

@@ -6,6 +6,7 @@ module fracas_local_solver
   implicit none
   private
   public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d
+  public :: coulomb_3d, inverse_block_3d, natural_map_3d
 
 contains
 
@@ -160,4 +161,212 @@ contains
       v(3, o) = v(3, o) - inv_mass(3, o) * (drt * l3 + drn * l4)
     end do
   end subroutine gs_sweep_2d
+  ! ====================================================================== 3D
+  ! 3D blocks are in FCLib order (n, t1, t2), stored column-major in w(9):
+  ! w(1) = Wnn, w(2) = Wt1n, w(3) = Wt2n, w(4) = Wnt1, ..., w(9) = Wt2t2.
+
+  !> Inverse of a 3x3 block (column-major, see above). A (nearly) singular
+  !> block gets a diagonal shift of 1e-10 of its largest diagonal term first,
+  !> so the stick trial stays finite.
+  pure function inverse_block_3d(w) result(wi)
+    real(wp), intent(in) :: w(9)
+    real(wp) :: wi(9), a(9), c(9), det, scale
+    integer :: attempt
+    a = w
+    scale = max(abs(w(1)), abs(w(5)), abs(w(9)), tiny(1.0_wp))
+    do attempt = 1, 2
+      c(1) = a(5) * a(9) - a(8) * a(6)
+      c(2) = -(a(2) * a(9) - a(8) * a(3))
+      c(3) = a(2) * a(6) - a(5) * a(3)
+      c(4) = -(a(4) * a(9) - a(7) * a(6))
+      c(5) = a(1) * a(9) - a(7) * a(3)
+      c(6) = -(a(1) * a(6) - a(4) * a(3))
+      c(7) = a(4) * a(8) - a(7) * a(5)
+      c(8) = -(a(1) * a(8) - a(7) * a(2))
+      c(9) = a(1) * a(5) - a(4) * a(2)
+      det = a(1) * c(1) + a(4) * c(2) + a(7) * c(3)
+      if (abs(det) > 1.0e-13_wp * scale**3) exit
+      a(1) = a(1) + 1.0e-10_wp * scale
+      a(5) = a(5) + 1.0e-10_wp * scale
+      a(9) = a(9) + 1.0e-10_wp * scale
+    end do
+    ! inverse(i,j) = cofactor(j,i) / det; c(i + 3(j-1)) holds cofactor(j,i) already
+    wi = c / det
+  end function inverse_block_3d
+
+  !> Exact local solver of one 3D Signorini–Coulomb contact: u = qf + W r,
+  !> K* ∋ u + mu |u_T| e_n ⊥ r ∈ K = {|r_T| <= mu r_n} (the FCLib local problem
+  !> with one contact). Tries in turn no contact (qf_n >= 0), sticking
+  !> (r = -W^-1 qf inside the cone) and sliding. Sliding is r = rho (1, -mu d),
+  !> |d| = 1, u_n = 0 and u_T = lambda d with lambda >= 0: rho follows from d
+  !> in closed form and d solves one scalar equation on the unit circle
+  !> (u_T x d = 0), by Newton from the previous sliding direction (warm start
+  !> in r) or the stick trial, with a bracketing search on the circle if
+  !> Newton fails. w is the block, wi = inverse_block_3d(w).
+  !> status: st_noctc, st_stick, st_slifw (sliding, any direction), or
+  !> -st_slifw when no sliding solution was found (r is then an approximation:
+  !> sliding along the initial direction, or the projected stick trial).
+  pure subroutine coulomb_3d(qf, w, wi, mu, r, status)
+    real(wp), intent(in) :: qf(3), w(9), wi(9), mu
+    real(wp), intent(inout) :: r(3)
+    integer, intent(out) :: status
+    integer, parameter :: nsample = 24
+    real(wp), parameter :: cs = cos(2.0_wp * 3.14159265358979323846_wp / nsample), &
+                           sn = sin(2.0_wp * 3.14159265358979323846_wp / nsample)
+    real(wp) :: qn, s1, s2, s3, d1, d2, e1, e2, rho, g, lam, dg, delta, nrm, gscale
+    real(wp) :: gs(0:nsample), ls(0:nsample), ds(2, 0:nsample), lo(2), hi(2), glo, dm(2)
+    logical :: ok, vs(0:nsample), found
+    integer :: it, k, kk
+    qn = qf(1)
+    if (qn >= 0.0_wp) then
+      r = 0.0_wp
+      status = st_noctc
+      return
+    end if
+    ! stick trial
+    s1 = -(wi(1) * qf(1) + wi(4) * qf(2) + wi(7) * qf(3))
+    s2 = -(wi(2) * qf(1) + wi(5) * qf(2) + wi(8) * qf(3))
+    s3 = -(wi(3) * qf(1) + wi(6) * qf(2) + wi(9) * qf(3))
+    if (s1 > 0.0_wp .and. s2**2 + s3**2 <= (mu * s1)**2) then
+      r = [s1, s2, s3]
+      status = st_stick
+      return
+    end if
+    if (mu == 0.0_wp .or. w(1) <= 0.0_wp) then
+      ! frictionless (or a block without normal stiffness: best effort)
+      r = [max(0.0_wp, -qn / max(w(1), tiny(1.0_wp))), 0.0_wp, 0.0_wp]
+      status = merge(st_slifw, -st_slifw, w(1) > 0.0_wp)
+      return
+    end if
+    ! initial sliding direction: the previous one if r was sliding, else the stick trial's
+    nrm = sqrt(r(2)**2 + r(3)**2)
+    if (r(1) > 0.0_wp .and. nrm >= 0.999_wp * mu * r(1) .and. nrm > 0.0_wp) then
+      d1 = -r(2) / nrm; d2 = -r(3) / nrm
+    else
+      nrm = sqrt(s2**2 + s3**2)
+      if (nrm > 0.0_wp) then
+        d1 = -s2 / nrm; d2 = -s3 / nrm
+      else
+        d1 = 1.0_wp; d2 = 0.0_wp
+      end if
+    end if
+    gscale = abs(qf(2)) + abs(qf(3)) + abs(qn) * (abs(w(2)) + abs(w(3)) + mu * (abs(w(5)) + abs(w(6)) + &
+             abs(w(8)) + abs(w(9)))) / w(1)
+    ! Newton on the angle (a rotation by atan(delta) per step)
+    found = .false.
+    do it = 1, 30
+      call slide(d1, d2, ok, rho, g, lam, dg)
+      if (.not. ok) exit
+      if (dg == 0.0_wp) exit
+      delta = -g / dg
+      delta = max(-1.0_wp, min(1.0_wp, delta))
+      e1 = d1 - delta * d2
+      e2 = d2 + delta * d1
+      nrm = 1.0_wp / sqrt(e1**2 + e2**2)
+      d1 = e1 * nrm; d2 = e2 * nrm
+      if (abs(delta) <= 1.0e-12_wp .or. abs(g) <= 1.0e-15_wp * gscale) then
+        call slide(d1, d2, ok, rho, g, lam, dg)
+        found = ok .and. lam >= -1.0e-12_wp * gscale
+        exit
+      end if
+    end do
+    if (.not. found) then
+      ! Sample the circle from the current direction; bisect the bracket
+      ! (sign change of g with lambda > 0) nearest to it.
+      ds(:, 0) = [d1, d2]
+      do k = 0, nsample
+        if (k > 0) ds(:, k) = [cs * ds(1, k - 1) - sn * ds(2, k - 1), sn * ds(1, k - 1) + cs * ds(2, k - 1)]
+        call slide(ds(1, k), ds(2, k), vs(k), rho, gs(k), ls(k), dg)
+      end do
+      do kk = 0, nsample - 1
+        ! nearest first: 0, nsample-1, 1, nsample-2, ...
+        k = merge(kk / 2, nsample - 1 - kk / 2, mod(kk, 2) == 0)
+        if (.not. (vs(k) .and. vs(k + 1))) cycle
+        if (gs(k) * gs(k + 1) > 0.0_wp .or. max(ls(k), ls(k + 1)) <= 0.0_wp) cycle
+        lo = ds(:, k); hi = ds(:, k + 1); glo = gs(k)
+        dm = lo
+        do it = 1, 60
+          dm = lo + hi
+          dm = dm / sqrt(dm(1)**2 + dm(2)**2)
+          call slide(dm(1), dm(2), ok, rho, g, lam, dg)
+          if (.not. ok) exit
+          if (abs(g) <= 1.0e-15_wp * gscale) exit
+          if (sign(1.0_wp, g) == sign(1.0_wp, glo)) then
+            lo = dm; glo = g
+          else
+            hi = dm
+          end if
+        end do
+        d1 = dm(1); d2 = dm(2)
+        call slide(d1, d2, ok, rho, g, lam, dg)
+        found = ok .and. lam >= -1.0e-12_wp * gscale
+        if (found) exit
+      end do
+    end if
+    if (found) then
+      r = [rho, -mu * rho * d1, -mu * rho * d2]
+      status = st_slifw
+    else
+      ! no sliding solution found: the projected stick trial
+      call project_cone_3d(s1, s2, s3, mu, r)
+      status = -st_slifw
+    end if
+
+  contains
+
+    !> Sliding along d: rho from u_n = 0, g = d_perp . u_T, lam = d . u_T and dg/dtheta.
+    pure subroutine slide(d1, d2, ok, rho, g, lam, dg)
+      real(wp), intent(in) :: d1, d2
+      logical, intent(out) :: ok
+      real(wp), intent(out) :: rho, g, lam, dg
+      real(wp) :: p1, p2, bd, bp, den, v1, v2, ap1, ap2, u1, u2, drho, du1, du2
+      p1 = -d2; p2 = d1
+      bd = w(4) * d1 + w(7) * d2
+      bp = w(4) * p1 + w(7) * p2
+      den = w(1) - mu * bd
+      ok = den > 0.0_wp
+      if (.not. ok) then
+        rho = 0.0_wp; g = 0.0_wp; lam = 0.0_wp; dg = 0.0_wp
+        return
+      end if
+      rho = -qn / den
+      v1 = w(2) - mu * (w(5) * d1 + w(8) * d2)
+      v2 = w(3) - mu * (w(6) * d1 + w(9) * d2)
+      ap1 = w(5) * p1 + w(8) * p2
+      ap2 = w(6) * p1 + w(9) * p2
+      u1 = qf(2) + rho * v1
+      u2 = qf(3) + rho * v2
+      g = p1 * u1 + p2 * u2
+      lam = d1 * u1 + d2 * u2
+      drho = rho * mu * bp / den
+      du1 = drho * v1 - mu * rho * ap1
+      du2 = drho * v2 - mu * rho * ap2
+      dg = -lam + p1 * du1 + p2 * du2
+    end subroutine slide
+  end subroutine coulomb_3d
+
+  !> Projection of x = (xn, xt1, xt2) on K = {|x_T| <= mu x_n}.
+  pure subroutine project_cone_3d(xn, xt1, xt2, mu, p)
+    real(wp), intent(in) :: xn, xt1, xt2, mu
+    real(wp), intent(out) :: p(3)
+    real(wp) :: nt, pn
+    nt = sqrt(xt1**2 + xt2**2)
+    if (mu * nt <= -xn) then
+      p = 0.0_wp
+    else if (nt <= mu * xn) then
+      p = [xn, xt1, xt2]
+    else
+      pn = (mu * nt + xn) / (1.0_wp + mu**2)
+      p = [pn, mu * pn * xt1 / nt, mu * pn * xt2 / nt]
+    end if
+  end subroutine project_cone_3d
+
+  !> FCLib natural map of one 3D contact (order n, t1, t2): F = r - P_K(r - u~),
+  !> u~ = u + mu |u_T| e_n. Returns |F|^2.
+  pure real(wp) function natural_map_3d(u, r, mu) result(f2)
+    real(wp), intent(in) :: u(3), r(3), mu
+    real(wp) :: p(3)
+    call project_cone_3d(r(1) - u(1) - mu * sqrt(u(2)**2 + u(3)**2), r(2) - u(2), r(3) - u(3), mu, p)
+    f2 = (r(1) - p(1))**2 + (r(2) - p(2))**2 + (r(3) - p(3))**2
+  end function natural_map_3d
 end module fracas_local_solver

@@ -5,7 +5,7 @@
 !> sweep of each block, and after convergence with the FCLib natural map.
 module fracas_nlgs
   use fracas_kinds, only: wp
-  use fracas_ids, only: st_noctc, st_noact
+  use fracas_ids, only: st_noctc
   use fracas_random, only: rng_t, rng_seed, rng_permute
   use fracas_rbdy2, only: rbdy2_t
   use fracas_contacts, only: contacts_t
@@ -98,7 +98,7 @@ contains
       c%mu(k) = law_friction(laws(c%law(k)), c%status_begin(k))
       if (.not. c%active(k)) then
         c%r(:, k) = 0.0_wp
-        c%status(k) = st_noact
+        c%status(k) = st_noctc   ! as LMGC90 reports a contact the law leaves open
       end if
     end do
   end subroutine nlgs_prepare

@@ -9,7 +9,7 @@ module fracas_output
   use fracas_files, only: make_dir, file_exists
   use fracas_deck, only: dof_record_t, contact_record_t
   use fracas_vtk, only: vtk_field, write_vtu, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_vertex
-  use fracas_contactors, only: tactor_center, tk_disk, tk_xksid, tk_jonc
+  use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc
   use fracas_scene, only: scene_t, step_report_t
   use fracas_version, only: version_string
   use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file
@@ -91,35 +91,30 @@ contains
   subroutine write_bodies_vtu(path, sc)
     character(len=*), intent(in) :: path
     type(scene_t), intent(in) :: sc
-    real(wp), allocatable :: pts(:, :), vel(:, :)
+    real(wp), allocatable :: pts(:, :), vel(:, :), outline(:, :)
     integer(ik), allocatable :: conn(:), offs(:), types(:), body(:), kind(:)
     real(wp), allocatable :: rot(:), spin(:)
-    real(wp) :: q(3), c(2), ang, a1, a2
-    integer :: k, j, np, nt, npt
+    integer :: k, j, np, nt, m
     nt = sc%tactors%n
-    npt = n_outline + 2      ! centre, rim points (closed)
-    allocate (pts(3, nt * npt), conn(nt * npt), offs(nt), types(nt), body(nt), kind(nt), &
-              vel(3, nt), rot(nt), spin(nt))
+    ! Sizes first (polygons: vertices + centre + closing point), then the points.
+    np = 0
+    do k = 1, nt
+      if (sc%tactors%kind(k) == tk_polyg) then
+        np = np + sc%tactors%vfirst(k + 1) - sc%tactors%vfirst(k) + 2
+      else
+        np = np + n_outline + 2
+      end if
+    end do
+    allocate (pts(3, np), conn(np), offs(nt), types(nt), body(nt), kind(nt), vel(3, nt), rot(nt), spin(nt))
     np = 0
     do k = 1, nt
       associate (t => sc%tactors, b => sc%bodies)
-        q = b%ref(:, t%body(k)) + b%x(:, t%body(k))
-        c = tactor_center(t, k, q)
-        pts(:, np + 1) = [c(1), c(2), 0.0_wp]
-        do j = 0, n_outline
-          ang = q(3) + 2.0_wp * acos(-1.0_wp) * j / n_outline
-          select case (t%kind(k))
-          case (tk_jonc)
-            ! Stadium: the rim point of a circle of radius ax2 pushed out by ax1 along the axis.
-            a1 = t%ax1(k); a2 = t%ax2(k)
-            pts(:, np + 2 + j) = [c(1), c(2), 0.0_wp] + stadium_point(a1, a2, q(3), &
-                                 2.0_wp * acos(-1.0_wp) * j / n_outline)
-          case default
-            pts(:, np + 2 + j) = [c(1) + t%radius(k) * cos(ang), c(2) + t%radius(k) * sin(ang), 0.0_wp]
-          end select
-        end do
-        conn(np + 1:np + npt) = [(int(np + j, ik), j=0, npt - 1)]
-        np = np + npt
+        outline = tactor_outline(sc, k)
+        m = size(outline, 2)
+        pts(1:2, np + 1:np + m) = outline
+        pts(3, np + 1:np + m) = 0.0_wp
+        conn(np + 1:np + m) = [(int(np + j, ik), j=0, m - 1)]
+        np = np + m
         offs(k) = int(np, ik)
         types(k) = vtk_poly_line
         body(k) = int(t%body(k), ik)
@@ -135,14 +130,51 @@ contains
                    time=sc%time)
   end subroutine write_bodies_vtu
 
+  !> Outline of contactor k in the current configuration, as a polyline that
+  !> starts at the contactor centre (a spoke shows the rotation) and closes.
+  function tactor_outline(sc, k) result(p)
+    type(scene_t), intent(in) :: sc
+    integer, intent(in) :: k
+    real(wp), allocatable :: p(:, :), v(:, :)
+    real(wp) :: q(3), c(2), ang, s
+    integer :: j, nv
+    associate (t => sc%tactors, b => sc%bodies)
+      q = b%ref(:, t%body(k)) + b%x(:, t%body(k))
+      c = tactor_center(t, k, q)
+      select case (t%kind(k))
+      case (tk_polyg)
+        v = tactor_vertices(t, k, q)
+        nv = size(v, 2)
+        allocate (p(2, nv + 2))
+        p(:, 1) = c
+        p(:, 2:nv + 1) = v
+        p(:, nv + 2) = v(:, 1)
+      case (tk_jonc)
+        allocate (p(2, n_outline + 2))
+        p(:, 1) = c
+        do j = 0, n_outline
+          s = 2.0_wp * acos(-1.0_wp) * j / n_outline
+          p(:, j + 2) = c + stadium_point(t%ax1(k), t%ax2(k), q(3), s)
+        end do
+      case default
+        allocate (p(2, n_outline + 2))
+        p(:, 1) = c
+        do j = 0, n_outline
+          ang = q(3) + 2.0_wp * acos(-1.0_wp) * j / n_outline
+          p(:, j + 2) = c + t%radius(k) * [cos(ang), sin(ang)]
+        end do
+      end select
+    end associate
+  end function tactor_outline
+
   !> Point of a stadium outline (half length a1, half thickness a2, axis angle
   !> phi) in the direction of parameter s around it.
   pure function stadium_point(a1, a2, phi, s) result(p)
     real(wp), intent(in) :: a1, a2, phi, s
-    real(wp) :: p(3), lx, ly
+    real(wp) :: p(2), lx, ly
     lx = a2 * cos(s) + sign(a1, cos(s))
     ly = a2 * sin(s)
-    p = [lx * cos(phi) - ly * sin(phi), lx * sin(phi) + ly * cos(phi), 0.0_wp]
+    p = [lx * cos(phi) - ly * sin(phi), lx * sin(phi) + ly * cos(phi)]
   end function stadium_point
 
   subroutine write_contacts_vtu(path, sc)
@@ -210,8 +242,10 @@ contains
           pos = m
           recs(pos)%inter = inter_names(it)
           recs(pos)%number = per_type(it)
-          recs(pos)%cdtac = tactor_name(t%kind(c%cd(k)))
-          recs(pos)%antac = tactor_name(t%kind(c%an(k)))
+          recs(pos)%cdtac = tactor_kind_name(t%kind(c%cd(k)))
+          recs(pos)%antac = tactor_kind_name(t%kind(c%an(k)))
+          recs(pos)%cdver = c%cdver(k)
+          recs(pos)%anseg = c%anseg(k)
           recs(pos)%icdbdy = sc%bodies%number(c%cdb(k))
           recs(pos)%ianbdy = sc%bodies%number(c%anb(k))
           recs(pos)%icdtac = t%rank(c%cd(k))
@@ -233,17 +267,6 @@ contains
     end associate
     call write_vloc_rloc_file(o%outbox//'/Vloc_Rloc.OUT.'//trim(num), sc%step, sc%time, recs)
   end subroutine output_outbox
-
-  pure function tactor_name(kind) result(name)
-    integer, intent(in) :: kind
-    character(len=5) :: name
-    select case (kind)
-    case (tk_disk); name = 'DISKx'
-    case (tk_xksid); name = 'xKSID'
-    case (tk_jonc); name = 'JONCx'
-    case default; name = '?????'
-    end select
-  end function tactor_name
 
   !> One snapshot of bodies and contacts in OUTBOX/fracas.h5.
   subroutine output_snapshot(o, sc)

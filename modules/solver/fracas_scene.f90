@@ -4,12 +4,12 @@
 !> NLGS -> velocity and position update -> history for the next step.
 module fracas_scene
   use fracas_kinds, only: wp, i8
-  use fracas_deck, only: deck_t
+  use fracas_deck, only: deck_t, body_input_t
   use fracas_errors, only: input_error
-  use fracas_ids, only: inter_id, status_id, st_noact
+  use fracas_ids, only: inter_id, status_id
   use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
                           rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy, drive_value
-  use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia
+  use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
   use fracas_contact_laws, only: law_t, law_from_input
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
   use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts
@@ -55,19 +55,24 @@ contains
     type(deck_t), intent(in) :: deck
     type(scene_t), intent(out) :: sc
     integer :: nb, ib, im, k, j, pos
-    integer, allocatable :: number(:), cd(:), an(:), inter(:), status(:)
+    integer, allocatable :: number(:), cd(:), an(:), sub(:), inter(:), status(:)
     real(wp), allocatable :: ref(:, :), mass(:), inertia(:), avrd(:), force(:, :)
     real(wp) :: density, area, polar, gyrd
     character(len=5), allocatable :: nick(:)
     type(nlgs_settings_t) :: ns
+    type(body_input_t), allocatable :: bodies(:)
 
     sc%h = deck%run%time_step
     sc%theta = deck%run%theta
     sc%detection_frequency = max(1, deck%run%detection_frequency)
     nb = size(deck%bodies)
+    bodies = deck%bodies
+    do ib = 1, nb
+      call polygons_to_centroid(bodies(ib))
+    end do
     allocate (number(nb), ref(3, nb), mass(nb), inertia(nb), avrd(nb))
     do ib = 1, nb
-      associate (bd => deck%bodies(ib))
+      associate (bd => bodies(ib))
         density = -1.0_wp
         do im = 1, size(deck%materials)
           if (deck%materials(im)%nickname == bd%behav) density = deck%materials(im)%density
@@ -111,7 +116,7 @@ contains
       sc%laws(k) = law_from_input(deck%laws(k))
       nick(k) = deck%laws(k)%nickname
     end do
-    call tactors_build(deck%bodies, sc%tactors)
+    call tactors_build(bodies, sc%tactors)
     allocate (sc%first_tactor(nb + 1))
     sc%first_tactor = sc%tactors%n + 1
     do k = sc%tactors%n, 1, -1
@@ -124,13 +129,14 @@ contains
     allocate (sc%q(3, nb))
 
     ! History from Vloc_Rloc.INI: contactors named by (body, rank in body).
-    allocate (cd(0), an(0), inter(0), status(0), force(2, 0))
+    allocate (cd(0), an(0), sub(0), inter(0), status(0), force(2, 0))
     do k = 1, size(deck%vloc_ini)
       associate (r => deck%vloc_ini(k))
         j = inter_id(r%inter)
         if (j == 0) cycle   ! a type this build does not treat: nothing to warm start
         cd = [cd, tactor_of(r%icdbdy, r%icdtac)]
         an = [an, tactor_of(r%ianbdy, r%iantac)]
+        sub = [sub, r%cdver]
         inter = [inter, j]
         pos = status_id(r%status)
         if (pos == 0) call input_error(r%src%file, r%src%line, 71, "unknown contact status '"//r%status//"'")
@@ -138,7 +144,7 @@ contains
         force = reshape([force, [r%rlt, r%rln]], [2, size(cd)])
       end associate
     end do
-    call history_build(sc%hist, sc%tactors%n, cd, an, inter, status, force)
+    call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force)
 
     ns%check = deck%run%nlgs_check
     ns%tol = deck%run%nlgs_tolerance
@@ -162,6 +168,31 @@ contains
       end associate
     end function tactor_of
   end subroutine scene_build
+
+  !> A body whose node is given as (0, 0, 0) and whose contactors are all
+  !> polygons has absolute vertices (as LMGC90 reads them): its node becomes the
+  !> area centroid and the vertices are made relative to it.
+  subroutine polygons_to_centroid(bd)
+    type(body_input_t), intent(inout) :: bd
+    real(wp) :: area, a, cen(2), c(2), polar
+    integer :: it
+    if (any(bd%coor /= 0.0_wp) .or. .not. allocated(bd%tactors)) return
+    if (size(bd%tactors) == 0) return
+    if (any(bd%tactors%kind /= 'POLYG')) return
+    area = 0.0_wp
+    cen = 0.0_wp
+    do it = 1, size(bd%tactors)
+      call polygon_area_moments(bd%tactors(it)%vertices, a, c, polar)
+      area = area + a
+      cen = cen + a * c
+    end do
+    cen = cen / area
+    bd%coor(1:2) = cen
+    do it = 1, size(bd%tactors)
+      bd%tactors(it)%vertices(1, :) = bd%tactors(it)%vertices(1, :) - cen(1)
+      bd%tactors(it)%vertices(2, :) = bd%tactors(it)%vertices(2, :) - cen(2)
+    end do
+  end subroutine polygons_to_centroid
 
   !> Advance the scene by one time step.
   subroutine scene_step(sc, rep)
@@ -188,7 +219,7 @@ contains
       end if
       call detect_fine(sc%det, sc%tactors, sc%q, c)
       do k = 1, c%n
-        pos = history_find(sc%hist, c%inter(k), c%cd(k), c%an(k))
+        pos = history_find(sc%hist, c%inter(k), c%cd(k), c%an(k), c%sub(k))
         if (pos > 0) then
           c%r(:, k) = sc%h * sc%hist%force(:, pos)
           c%status_begin(k) = sc%hist%status(pos)
@@ -217,7 +248,7 @@ contains
       sc%work_supports = sc%work_supports + support_work(sc)
       nover = 0
       do k = 1, c%n
-        if (c%status(k) == st_noact) cycle
+        if (.not. c%active(k)) cycle
         sc%dissipated = sc%dissipated - 0.5_wp * sum(c%r(:, k) * (c%u(:, k) + c%u_begin(:, k)))
         gap_end = c%gap(k) + sc%h * c%u(2, k)
         if (gap_end < 0.0_wp) then

@@ -26,7 +26,7 @@ NUM = re.compile(r"[-+]?\d*\.\d+[DdEe][-+]\d+")
 
 def read_vloc(path):
     """Vloc_Rloc.OUT.n -> dict key -> dict(status, rlt, rln); key = (type, cd body,
-    cd contactor, an body, an contactor)."""
+    cd contactor, cd vertex (polygons, else 0), an body, an contactor)."""
     lines = open(path).read().splitlines()
     out = {}
     i = 0
@@ -39,13 +39,15 @@ def read_vloc(path):
             words = [w for w in f]
             cdbdy, cdtac = int(words[1]), int(words[3])
             j = 4
+            cdver = 0
             if words[j] in ("CDVER",):
+                cdver = int(words[j + 1])
                 j += 2
             j += 1  # behav
             anbdy, antac = int(words[j + 1]), int(words[j + 3])
             status = words[-2]
             vals = [float(x.replace("D", "E").replace("d", "e")) for x in NUM.findall(lines[i + 3])]
-            key = (inter, cdbdy, cdtac, anbdy, antac)
+            key = (inter, cdbdy, cdtac, cdver, anbdy, antac)
             out[key] = dict(status=status, rlt=vals[0], rln=vals[1])
             i += 3
         i += 1
