@@ -6,12 +6,11 @@ Prints one line per quantity and exits 1 if any check fails.
 """
 import math
 import sys
-
-sys.dont_write_bytecode = True
 from pathlib import Path
 
 import numpy as np
 
+sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation"))

@@ -6,10 +6,9 @@ The parameters below are also read by check.py (import gen), so the check and th
 deck cannot disagree. Run once; the generated DATBOX is committed.
 """
 import sys
-
-sys.dont_write_bytecode = True
 from pathlib import Path
 
+sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation"))
 import valtools  # noqa: E402
