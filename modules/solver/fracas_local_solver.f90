@@ -88,15 +88,18 @@ contains
   !> the body velocities v (3,nb) after each contact (the hot loop of NLGS).
   !> body(1:2,k): candidate and antagonist bodies; geo(1:6,k): n1, n2 and the
   !> lever arms (cd t, cd n, an t, an n); w(4,k) the Delassus block (tt, tn, nt,
-  !> nn) and wi(6,k) its inverse_block; shift(2,k) the law shift; r(2,k)
-  !> impulses, updated in place.
+  !> nn) and wi(6,k) the inverse_block of the block the local solver uses;
+  !> shift(2,k) the law shift; r(2,k) total impulses, updated in place. A
+  !> cohesive contact solves for its contact part r_c with W' = A W and
+  !> u~free' = A (u~free + W a), then r = r_c + a + K u~ (coh(12,k) = A, W', a, K).
   !> With check, the sums of LMGC90's norms are returned: sums(1) sum du^2,
   !> (2) sum du^2 |rbar|^2, (3) sum rbar.du, (4) sum W r.r, (5) sum |W r|^2,
   !> (6) contacts with rbar /= 0; maxes(1) max du^2, (2) max du^2 |rbar|^2.
-  subroutine gs_sweep_2d(order, active, body, geo, w, wi, shift, mu, r, status, v, inv_mass, relax, check, &
-                         sums, maxes)
+  subroutine gs_sweep_2d(order, active, cohesive, coh, body, geo, w, wi, shift, mu, r, status, v, inv_mass, &
+                         relax, check, sums, maxes)
     integer, intent(in), contiguous :: order(:), body(:, :)
-    logical, intent(in), contiguous :: active(:)
+    logical, intent(in), contiguous :: active(:), cohesive(:)
+    real(wp), intent(in), contiguous :: coh(:, :)
     logical, intent(in) :: check
     real(wp), intent(in), contiguous :: geo(:, :), w(:, :), wi(:, :), shift(:, :), mu(:), inv_mass(:, :)
     real(wp), intent(in) :: relax
@@ -105,7 +108,7 @@ contains
     real(wp), intent(out) :: sums(6), maxes(2)
     integer :: ii, k, a, o, st
     real(wp) :: n1, n2, l1, l2, l3, l4, wtt, wtn, wnt, wnn, dvx, dvy, ut, un, rt0, rn0, rt, rn
-    real(wp) :: uft, ufn, drt, drn, px, py, dut, dun, du2, rbt, rbn, rb2
+    real(wp) :: uft, ufn, drt, drn, px, py, dut, dun, du2, rbt, rbn, rb2, xt, xn, rct, rcn
     sums = 0.0_wp
     maxes = 0.0_wp
     do ii = 1, size(order)
@@ -122,7 +125,19 @@ contains
       rt0 = r(1, k); rn0 = r(2, k)
       uft = ut - (wtt * rt0 + wtn * rn0) + shift(1, k)
       ufn = un - (wnt * rt0 + wnn * rn0) + shift(2, k)
-      call coulomb_2d_inv(uft, ufn, wi(:, k), mu(k), rt, rn, st)
+      if (cohesive(k)) then
+        xt = uft + wtt * coh(9, k) + wtn * coh(10, k)
+        xn = ufn + wnt * coh(9, k) + wnn * coh(10, k)
+        uft = coh(1, k) * xt + coh(2, k) * xn
+        ufn = coh(3, k) * xt + coh(4, k) * xn
+        call coulomb_2d_inv(uft, ufn, wi(:, k), mu(k), rct, rcn, st)
+        xt = uft + coh(5, k) * rct + coh(6, k) * rcn     ! u~ at the end of the step
+        xn = ufn + coh(7, k) * rct + coh(8, k) * rcn
+        rt = rct + coh(9, k) + coh(11, k) * xt
+        rn = rcn + coh(10, k) + coh(12, k) * xn
+      else
+        call coulomb_2d_inv(uft, ufn, wi(:, k), mu(k), rt, rn, st)
+      end if
       status(k) = st
       if (check) then
         ! du = W (r_old - r_new), rbar = mean reaction (LMGC90's check quantities)

@@ -1,0 +1,532 @@
+!> Nonlinear Gauss–Seidel in stored-Delassus mode (LMGC90's "Stored_Delassus_Loops",
+!> the form of FCLib local problems): u = W r + q with W given explicitly as
+!> dim x dim blocks, the diagonal block of each contact and the off-diagonal
+!> blocks as a block-sparse (block CSR) matrix. Each contact in turn gathers
+!> q_a + sum_b W_ab r_b over its off-diagonal blocks and solves its local
+!> problem exactly (2D: coulomb_2d_inv; 3D: coulomb_3d).
+!>
+!> Stopping: LMGC90's norms (Quad, Maxm, QM/16, as the scene NLGS) and/or the
+!> FCLib natural-map error ||F(r)|| / ||q|| (reference/fclib_siconos.md §2.1).
+!> The natural map is estimated for free inside each check sweep: each contact's
+!> F of its reaction before the update, with the velocity it sees then (the
+!> Gauss–Seidel residual); when the estimate meets the tolerance the exact
+!> error is computed (one product W r) and decides.
+module fracas_sdl
+  use, intrinsic :: iso_fortran_env, only: int64
+  use fracas_kinds, only: wp
+  use fracas_errors, only: fatal, warn
+  use fracas_random, only: rng_t, rng_seed, rng_permute
+  use fracas_local_solver, only: coulomb_2d_inv, inverse_block, natural_map_2d, coulomb_3d, inverse_block_3d, &
+                                 natural_map_3d
+  implicit none
+  private
+  public :: sdl_problem_t, sdl_settings_t, sdl_report_t, sdl_history_t
+  public :: sdl_build, sdl_solve, sdl_error, sdl_velocity, sdl_history_points
+
+  !> A local problem in block form. Components of a contact: normal first
+  !> (FCLib order). Blocks are stored column-major (dim*dim values).
+  type :: sdl_problem_t
+    integer :: dim = 0, nc = 0, nblocks = 0
+    real(wp), allocatable :: q(:, :)      !< (dim, nc)
+    real(wp), allocatable :: mu(:)        !< (nc)
+    real(wp), allocatable :: wd(:, :)     !< (dim*dim, nc) diagonal blocks
+    real(wp), allocatable :: wdi(:, :)    !< 2D: inverse_block (6, nc), 3D: inverse_block_3d (9, nc)
+    integer, allocatable :: bptr(:)       !< (nc+1) first off-diagonal block of each block row
+    integer, allocatable :: bcol(:)       !< (nblocks) block column
+    real(wp), allocatable :: bval(:, :)   !< (dim*dim, nblocks)
+    real(wp) :: norm_q = 0.0_wp
+    integer :: regularised = 0            !< diagonal blocks shifted to be invertible
+  end type sdl_problem_t
+
+  type :: sdl_settings_t
+    character(len=5) :: check = 'none '     !< LMGC90 norm: Quad, Maxm, QM/16, or none
+    real(wp) :: tol = 1.0e-4_wp             !< tolerance of the LMGC90 norm
+    real(wp) :: err_tol = 1.0e-8_wp         !< stop on ||F||/||q|| <= err_tol (0: off)
+    real(wp) :: relax = 1.0_wp
+    integer :: sweeps_per_check = 1
+    integer :: max_sweeps = 100000
+    character(len=8) :: order = 'stored'    !< stored, reversed, shuffled
+    integer :: seed = 1
+    real(wp) :: time_limit = huge(1.0_wp)   !< seconds of solve time
+  end type sdl_settings_t
+
+  type :: sdl_report_t
+    integer :: sweeps = 0
+    logical :: converged = .false.
+    real(wp) :: time = 0.0_wp            !< solve wall time (s), history evaluations excluded
+    real(wp) :: err_abs = 0.0_wp         !< ||F(r)||
+    real(wp) :: err_paper = 0.0_wp       !< ||F|| / ||q|| (||F|| if ||q|| <= eps)
+    real(wp) :: err_onepq = 0.0_wp       !< ||F|| / (1 + ||q||)
+    integer :: exact_checks = 0          !< products W r done to confirm the stop
+    integer :: local_failures = 0        !< 3D local solves without an exact sliding solution
+    real(wp) :: quad_dv = 0.0_wp, maxm_dv = 0.0_wp, quad_dvr = 0.0_wp, maxm_dvr = 0.0_wp, mean_dvor = 0.0_wp
+  end type sdl_report_t
+
+  !> Error after chosen sweep counts (error-versus-time curves); the
+  !> evaluations are not counted in the times.
+  type :: sdl_history_t
+    integer, allocatable :: at(:)         !< sweep counts to record (increasing)
+    integer :: n = 0                      !< records filled
+    integer, allocatable :: sweeps(:)
+    real(wp), allocatable :: time(:), err_paper(:), err_onepq(:)
+  end type sdl_history_t
+
+contains
+
+  !> Build the block form from 1-based triplets (row, col, val) of W (m = dim*nc
+  !> square; duplicates add up), q (m) and mu (nc).
+  subroutine sdl_build(dim, nc, row, col, val, q, mu, p)
+    integer, intent(in) :: dim, nc
+    integer, intent(in) :: row(:), col(:)
+    real(wp), intent(in) :: val(:), q(:), mu(:)
+    type(sdl_problem_t), intent(out) :: p
+    integer, allocatable :: cnt(:), start(:), perm(:), pos(:), fill(:)
+    integer :: k, a, b, i, j, nb, e, d2
+    real(wp) :: det, scale, wl(4)
+    p%dim = dim; p%nc = nc
+    d2 = dim * dim
+    p%q = reshape(q, [dim, nc])
+    p%mu = mu
+    p%norm_q = sqrt(sum(q**2))
+    allocate (p%wd(d2, nc), source=0.0_wp)
+    ! bucket entries by block row
+    allocate (cnt(nc), source=0)
+    do k = 1, size(row)
+      a = (row(k) - 1) / dim + 1
+      cnt(a) = cnt(a) + 1
+    end do
+    allocate (start(nc + 1))
+    start(1) = 1
+    do a = 1, nc
+      start(a + 1) = start(a) + cnt(a)
+    end do
+    allocate (perm(size(row)), fill(nc))
+    fill = start(1:nc)
+    do k = 1, size(row)
+      a = (row(k) - 1) / dim + 1
+      perm(fill(a)) = k
+      fill(a) = fill(a) + 1
+    end do
+    ! count distinct off-diagonal block columns per block row
+    allocate (pos(nc), source=0)
+    allocate (p%bptr(nc + 1))
+    p%bptr(1) = 1
+    nb = 0
+    do a = 1, nc
+      do e = start(a), start(a + 1) - 1
+        b = (col(perm(e)) - 1) / dim + 1
+        if (b /= a .and. pos(b) /= a) then
+          pos(b) = a
+          nb = nb + 1
+        end if
+      end do
+      p%bptr(a + 1) = nb + 1
+    end do
+    p%nblocks = nb
+    allocate (p%bcol(nb), p%bval(d2, nb))
+    p%bval = 0.0_wp
+    pos = 0
+    nb = 0
+    do a = 1, nc
+      ! pos(b) = index of block (a,b) while row a is assembled (block columns sorted later)
+      do e = start(a), start(a + 1) - 1
+        k = perm(e)
+        b = (col(k) - 1) / dim + 1
+        i = row(k) - (a - 1) * dim
+        j = col(k) - (b - 1) * dim
+        if (b == a) then
+          p%wd(i + dim * (j - 1), a) = p%wd(i + dim * (j - 1), a) + val(k)
+        else
+          if (pos(b) == 0) then
+            nb = nb + 1
+            pos(b) = nb
+            p%bcol(nb) = b
+          end if
+          p%bval(i + dim * (j - 1), pos(b)) = p%bval(i + dim * (j - 1), pos(b)) + val(k)
+        end if
+      end do
+      do e = p%bptr(a), p%bptr(a + 1) - 1
+        pos(p%bcol(e)) = 0
+      end do
+      call sort_row(p%bptr(a), p%bptr(a + 1) - 1)
+    end do
+    ! local-solver data of the diagonal blocks
+    p%regularised = 0
+    if (dim == 2) then
+      allocate (p%wdi(6, nc))
+      do a = 1, nc
+        ! FCLib (n, t) -> coulomb_2d's (t, n): wtt = W(2,2), wtn = W(2,1), wnt = W(1,2), wnn = W(1,1)
+        ! (a copy is shifted if singular: W itself stays as read, for the error)
+        wl = p%wd(:, a)
+        scale = max(abs(wl(1)), abs(wl(4)), tiny(1.0_wp))
+        det = wl(4) * wl(1) - wl(2) * wl(3)
+        if (det <= 1.0e-13_wp * scale**2 .or. wl(1) - p%mu(a) * abs(wl(3)) <= 1.0e-13_wp * scale) then
+          wl(1) = wl(1) + 1.0e-10_wp * scale
+          wl(4) = wl(4) + 1.0e-10_wp * scale
+          p%regularised = p%regularised + 1
+        end if
+        p%wdi(:, a) = inverse_block(wl(4), wl(2), wl(3), wl(1), p%mu(a))
+      end do
+    else if (dim == 3) then
+      allocate (p%wdi(9, nc))
+      do a = 1, nc
+        p%wdi(:, a) = inverse_block_3d(p%wd(:, a))
+      end do
+    else
+      call fatal('sdl_build: dimension must be 2 or 3')
+    end if
+    if (p%regularised > 0) call warn('stored-Delassus NLGS: shifted the diagonal of singular 2x2 blocks')
+
+  contains
+
+    !> Insertion sort of the blocks e1..e2 by column (rows are short).
+    subroutine sort_row(e1, e2)
+      integer, intent(in) :: e1, e2
+      integer :: x, y, c
+      real(wp) :: v(d2)
+      do x = e1 + 1, e2
+        c = p%bcol(x); v = p%bval(:, x)
+        y = x - 1
+        do while (y >= e1)
+          if (p%bcol(y) <= c) exit
+          p%bcol(y + 1) = p%bcol(y); p%bval(:, y + 1) = p%bval(:, y)
+          y = y - 1
+        end do
+        p%bcol(y + 1) = c; p%bval(:, y + 1) = v
+      end do
+    end subroutine sort_row
+  end subroutine sdl_build
+
+  !> u = W r + q.
+  subroutine sdl_velocity(p, r, u)
+    type(sdl_problem_t), intent(in) :: p
+    real(wp), intent(in) :: r(:, :)
+    real(wp), intent(out) :: u(:, :)
+    integer :: a, e, b, i, j, d
+    d = p%dim
+    do a = 1, p%nc
+      u(:, a) = p%q(:, a)
+      do j = 1, d
+        do i = 1, d
+          u(i, a) = u(i, a) + p%wd(i + d * (j - 1), a) * r(j, a)
+        end do
+      end do
+      do e = p%bptr(a), p%bptr(a + 1) - 1
+        b = p%bcol(e)
+        do j = 1, d
+          do i = 1, d
+            u(i, a) = u(i, a) + p%bval(i + d * (j - 1), e) * r(j, b)
+          end do
+        end do
+      end do
+    end do
+  end subroutine sdl_velocity
+
+  !> Our evaluator of the FCLib natural-map error of r: ||F||, ||F||/||q||
+  !> (||F|| when ||q|| <= eps, as eval_solution.py) and ||F||/(1+||q||).
+  subroutine sdl_error(p, r, err_abs, err_paper, err_onepq)
+    type(sdl_problem_t), intent(in) :: p
+    real(wp), intent(in) :: r(:, :)
+    real(wp), intent(out) :: err_abs, err_paper, err_onepq
+    real(wp), allocatable :: u(:, :)
+    real(wp) :: f2
+    integer :: a
+    allocate (u(p%dim, p%nc))
+    call sdl_velocity(p, r, u)
+    f2 = 0.0_wp
+    if (p%dim == 2) then
+      do a = 1, p%nc
+        f2 = f2 + natural_map_2d(u(2, a), u(1, a), r(2, a), r(1, a), p%mu(a))
+      end do
+    else
+      do a = 1, p%nc
+        f2 = f2 + natural_map_3d(u(:, a), r(:, a), p%mu(a))
+      end do
+    end if
+    err_abs = sqrt(f2)
+    err_paper = err_abs / qnorm(p)
+    err_onepq = err_abs / (1.0_wp + p%norm_q)
+  end subroutine sdl_error
+
+  pure real(wp) function qnorm(p)
+    type(sdl_problem_t), intent(in) :: p
+    qnorm = p%norm_q
+    if (qnorm <= epsilon(1.0_wp)) qnorm = 1.0_wp
+  end function qnorm
+
+  !> About ten sweep counts per decade, 1 .. nmax (for sdl_history_t%at).
+  function sdl_history_points(nmax) result(at)
+    integer, intent(in) :: nmax
+    integer, allocatable :: at(:)
+    integer :: i, k, last
+    allocate (at(0))
+    last = 0
+    i = 0
+    do
+      k = nint(10.0_wp**(real(i, wp) / 10.0_wp))
+      i = i + 1
+      if (k > nmax) exit
+      if (k > last) then
+        at = [at, k]
+        last = k
+      end if
+    end do
+  end function sdl_history_points
+
+  !> Solve from the warm start r (dim, nc); r is the last iterate on return.
+  subroutine sdl_solve(p, s, r, rep, hist)
+    type(sdl_problem_t), intent(in) :: p
+    type(sdl_settings_t), intent(in) :: s
+    real(wp), intent(inout) :: r(:, :)
+    type(sdl_report_t), intent(out) :: rep
+    type(sdl_history_t), intent(inout), optional :: hist
+    integer, allocatable :: order(:)
+    type(rng_t) :: rng
+    integer :: n, k, ih, spc, nfail
+    integer(int64) :: t0, t1, rate, paused
+    real(wp) :: tol_light, fsum, sums(6), maxes(2), e_est, ea, ep, eo
+    logical :: check, est, lmgc, conv, have_exact
+    n = p%nc
+    spc = max(1, s%sweeps_per_check)
+    allocate (order(n))
+    select case (s%order)
+    case ('reversed')
+      order = [(n + 1 - k, k=1, n)]
+    case default
+      order = [(k, k=1, n)]
+    end select
+    call rng_seed(rng, s%seed)
+    ih = 1
+    if (present(hist)) then
+      hist%n = 0
+      k = size(hist%at)
+      if (allocated(hist%sweeps)) deallocate (hist%sweeps, hist%time, hist%err_paper, hist%err_onepq)
+      allocate (hist%sweeps(k), hist%time(k), hist%err_paper(k), hist%err_onepq(k))
+    end if
+    rep%sweeps = 0
+    rep%converged = .false.
+    rep%exact_checks = 0
+    rep%local_failures = 0
+    have_exact = .false.
+    tol_light = s%err_tol
+    paused = 0
+    call system_clock(t0, rate)
+    ! the start may already be a solution (q = 0, or a converged warm start)
+    if (s%err_tol > 0.0_wp .and. s%check == 'none') then
+      call sdl_error(p, r, ea, ep, eo)
+      rep%exact_checks = 1
+      have_exact = .true.
+      rep%converged = ep <= s%err_tol
+    end if
+    if (n == 0) rep%converged = .true.
+    do while (.not. rep%converged .and. rep%sweeps < s%max_sweeps)
+      if (s%order == 'shuffled' .and. mod(rep%sweeps, spc) == 0) call rng_permute(rng, order)
+      check = mod(rep%sweeps + 1, spc) == 0
+      est = check .and. s%err_tol > 0.0_wp
+      lmgc = check .and. s%check /= 'none'
+      if (p%dim == 2) then
+        call sweep_2d(p, order, s%relax, r, est, lmgc, fsum, sums, maxes)
+      else
+        call sweep_3d(p, order, s%relax, r, est, lmgc, fsum, sums, maxes, nfail)
+        rep%local_failures = rep%local_failures + nfail
+      end if
+      rep%sweeps = rep%sweeps + 1
+      have_exact = .false.
+      if (present(hist)) then
+        if (ih <= size(hist%at)) then
+          if (rep%sweeps == hist%at(ih)) then
+            call record()
+            ih = ih + 1
+          end if
+        end if
+      end if
+      if (check) then
+        ! no criterion at all (err_tol = 0, check none): run max_sweeps
+        conv = lmgc .or. s%err_tol > 0.0_wp
+        if (lmgc) conv = lmgc_converged(s, sums, maxes, rep)
+        if (conv .and. s%err_tol > 0.0_wp) then
+          e_est = sqrt(fsum) / qnorm(p)
+          conv = e_est <= tol_light
+          if (conv) then
+            call sdl_error(p, r, ea, ep, eo)
+            rep%exact_checks = rep%exact_checks + 1
+            have_exact = .true.
+            conv = ep <= s%err_tol
+            ! the estimate was optimistic: ask it for more next time
+            if (.not. conv) tol_light = min(tol_light, 0.5_wp * e_est * s%err_tol / max(ep, tiny(1.0_wp)))
+          end if
+        end if
+        rep%converged = conv
+        call system_clock(t1)
+        if (real(t1 - t0 - paused, wp) / real(rate, wp) > s%time_limit) exit
+      end if
+    end do
+    call system_clock(t1)
+    rep%time = real(t1 - t0 - paused, wp) / real(rate, wp)
+    if (.not. have_exact) call sdl_error(p, r, ea, ep, eo)
+    rep%err_abs = ea; rep%err_paper = ep; rep%err_onepq = eo
+    if (present(hist)) then
+      if (hist%n == 0 .or. hist%sweeps(max(1, hist%n)) /= rep%sweeps) then
+        if (hist%n == size(hist%sweeps)) then
+          hist%sweeps = [hist%sweeps, 0]; hist%time = [hist%time, 0.0_wp]
+          hist%err_paper = [hist%err_paper, 0.0_wp]; hist%err_onepq = [hist%err_onepq, 0.0_wp]
+        end if
+        hist%n = hist%n + 1
+        hist%sweeps(hist%n) = rep%sweeps; hist%time(hist%n) = rep%time
+        hist%err_paper(hist%n) = ep; hist%err_onepq(hist%n) = eo
+      end if
+    end if
+
+  contains
+
+    !> Record the exact error now; the time spent here is not counted.
+    subroutine record()
+      integer(int64) :: ta, tb
+      real(wp) :: a1, a2, a3
+      call system_clock(ta)
+      call sdl_error(p, r, a1, a2, a3)
+      hist%n = hist%n + 1
+      hist%sweeps(hist%n) = rep%sweeps
+      hist%time(hist%n) = real(ta - t0 - paused, wp) / real(rate, wp)
+      hist%err_paper(hist%n) = a2
+      hist%err_onepq(hist%n) = a3
+      call system_clock(tb)
+      paused = paused + (tb - ta)
+    end subroutine record
+  end subroutine sdl_solve
+
+  !> LMGC90's normalised norms from the sums of a check sweep (as fracas_nlgs).
+  logical function lmgc_converged(s, sums, maxes, rep) result(conv)
+    type(sdl_settings_t), intent(in) :: s
+    real(wp), intent(in) :: sums(6), maxes(2)
+    type(sdl_report_t), intent(inout) :: rep
+    real(wp) :: nact, quad_wr, mean_wrr
+    nact = sums(6)
+    if (nact < 1.0_wp .or. sums(4) <= 0.0_wp) then
+      rep%quad_dv = 0.0_wp; rep%maxm_dv = 0.0_wp; rep%quad_dvr = 0.0_wp
+      rep%maxm_dvr = 0.0_wp; rep%mean_dvor = 0.0_wp
+      conv = .true.
+      return
+    end if
+    quad_wr = sqrt(sums(5) / nact)
+    mean_wrr = sums(4) / nact
+    rep%quad_dv = sqrt(sums(1) / nact) / (quad_wr * s%tol)
+    rep%maxm_dv = sqrt(maxes(1)) / (quad_wr * s%tol)
+    rep%quad_dvr = sqrt(sums(2) / nact) / (mean_wrr * s%tol)
+    rep%maxm_dvr = sqrt(maxes(2)) / (mean_wrr * s%tol)
+    rep%mean_dvor = sums(3) / (sums(4) * s%tol)
+    if (rep%quad_dv /= rep%quad_dv) call fatal('stored-Delassus NLGS diverged (NaN in the reactions)')
+    select case (s%check)
+    case ('Maxm ')
+      conv = abs(rep%mean_dvor) < 1.0_wp .and. rep%maxm_dv < 1.0_wp .and. rep%maxm_dvr < 1.0_wp
+    case ('QM/16')
+      conv = abs(rep%mean_dvor) < 1.0_wp .and. rep%quad_dv < 1.0_wp .and. &
+             rep%quad_dvr < 1.0_wp .and. rep%maxm_dv < 16.666_wp .and. rep%maxm_dvr < 16.666_wp
+    case default
+      conv = abs(rep%mean_dvor) < 1.0_wp .and. rep%quad_dv < 1.0_wp .and. rep%quad_dvr < 1.0_wp
+    end select
+  end function lmgc_converged
+
+  !> LMGC90's check sums for one contact: du = W_aa (r_old - r_new), rbar the mean.
+  pure subroutine lmgc_sums(d, w, r0, r1, sums, maxes)
+    integer, intent(in) :: d
+    real(wp), intent(in) :: w(:), r0(:), r1(:)
+    real(wp), intent(inout) :: sums(6), maxes(2)
+    real(wp) :: du(3), rb(3), w0(3), w1(3), du2, rb2
+    integer :: i, j
+    du = 0.0_wp; w0 = 0.0_wp; w1 = 0.0_wp
+    do j = 1, d
+      do i = 1, d
+        du(i) = du(i) + w(i + d * (j - 1)) * (r0(j) - r1(j))
+        w0(i) = w0(i) + w(i + d * (j - 1)) * r0(j)
+        w1(i) = w1(i) + w(i + d * (j - 1)) * r1(j)
+      end do
+    end do
+    rb(1:d) = 0.5_wp * (r0(1:d) + r1(1:d))
+    if (all(rb(1:d) == 0.0_wp)) return
+    du2 = sum(du(1:d)**2)
+    rb2 = sum(rb(1:d)**2)
+    sums(1) = sums(1) + du2
+    sums(2) = sums(2) + du2 * rb2
+    sums(3) = sums(3) + sum(rb(1:d) * du(1:d))
+    sums(4) = sums(4) + 0.5_wp * (sum(w0(1:d) * r0(1:d)) + sum(w1(1:d) * r1(1:d)))
+    sums(5) = sums(5) + 0.5_wp * (sum(w0(1:d)**2) + sum(w1(1:d)**2))
+    sums(6) = sums(6) + 1.0_wp
+    maxes(1) = max(maxes(1), du2)
+    maxes(2) = max(maxes(2), du2 * rb2)
+  end subroutine lmgc_sums
+
+  !> One 2D sweep. est: accumulate in fsum each contact's |F|^2 before its update; lmgc: LMGC90 sums.
+  subroutine sweep_2d(p, order, relax, r, est, lmgc, fsum, sums, maxes)
+    type(sdl_problem_t), intent(in) :: p
+    integer, intent(in) :: order(:)
+    real(wp), intent(in) :: relax
+    real(wp), intent(inout) :: r(:, :)
+    logical, intent(in) :: est, lmgc
+    real(wp), intent(out) :: fsum, sums(6), maxes(2)
+    integer :: ii, a, e, b, st
+    real(wp) :: sn, stg, rn0, rt0, rn, rt, un, ut
+    fsum = 0.0_wp; sums = 0.0_wp; maxes = 0.0_wp
+    do ii = 1, size(order)
+      a = order(ii)
+      sn = p%q(1, a); stg = p%q(2, a)
+      do e = p%bptr(a), p%bptr(a + 1) - 1
+        b = p%bcol(e)
+        sn = sn + p%bval(1, e) * r(1, b) + p%bval(3, e) * r(2, b)
+        stg = stg + p%bval(2, e) * r(1, b) + p%bval(4, e) * r(2, b)
+      end do
+      rn0 = r(1, a); rt0 = r(2, a)
+      if (est) then
+        un = sn + p%wd(1, a) * rn0 + p%wd(3, a) * rt0
+        ut = stg + p%wd(2, a) * rn0 + p%wd(4, a) * rt0
+        fsum = fsum + natural_map_2d(ut, un, rt0, rn0, p%mu(a))
+      end if
+      call coulomb_2d_inv(stg, sn, p%wdi(:, a), p%mu(a), rt, rn, st)
+      if (relax /= 1.0_wp) then
+        rt = relax * rt + (1.0_wp - relax) * rt0
+        rn = relax * rn + (1.0_wp - relax) * rn0
+      end if
+      r(1, a) = rn; r(2, a) = rt
+      if (lmgc) call lmgc_sums(2, p%wd(:, a), [rn0, rt0], [rn, rt], sums, maxes)
+    end do
+  end subroutine sweep_2d
+
+  !> One 3D sweep (see sweep_2d); nfail counts local solves without an exact answer.
+  subroutine sweep_3d(p, order, relax, r, est, lmgc, fsum, sums, maxes, nfail)
+    type(sdl_problem_t), intent(in) :: p
+    integer, intent(in) :: order(:)
+    real(wp), intent(in) :: relax
+    real(wp), intent(inout) :: r(:, :)
+    logical, intent(in) :: est, lmgc
+    real(wp), intent(out) :: fsum, sums(6), maxes(2)
+    integer, intent(out) :: nfail
+    integer :: ii, a, e, b, st
+    real(wp) :: s(3), r0(3), r1(3), u(3), x1, x2, x3
+    fsum = 0.0_wp; sums = 0.0_wp; maxes = 0.0_wp
+    nfail = 0
+    do ii = 1, size(order)
+      a = order(ii)
+      s = p%q(:, a)
+      do e = p%bptr(a), p%bptr(a + 1) - 1
+        b = p%bcol(e)
+        x1 = r(1, b); x2 = r(2, b); x3 = r(3, b)
+        s(1) = s(1) + p%bval(1, e) * x1 + p%bval(4, e) * x2 + p%bval(7, e) * x3
+        s(2) = s(2) + p%bval(2, e) * x1 + p%bval(5, e) * x2 + p%bval(8, e) * x3
+        s(3) = s(3) + p%bval(3, e) * x1 + p%bval(6, e) * x2 + p%bval(9, e) * x3
+      end do
+      r0 = r(:, a)
+      if (est) then
+        u(1) = s(1) + p%wd(1, a) * r0(1) + p%wd(4, a) * r0(2) + p%wd(7, a) * r0(3)
+        u(2) = s(2) + p%wd(2, a) * r0(1) + p%wd(5, a) * r0(2) + p%wd(8, a) * r0(3)
+        u(3) = s(3) + p%wd(3, a) * r0(1) + p%wd(6, a) * r0(2) + p%wd(9, a) * r0(3)
+        fsum = fsum + natural_map_3d(u, r0, p%mu(a))
+      end if
+      r1 = r0
+      call coulomb_3d(s, p%wd(:, a), p%wdi(:, a), p%mu(a), r1, st)
+      if (st < 0) nfail = nfail + 1
+      if (relax /= 1.0_wp) r1 = relax * r1 + (1.0_wp - relax) * r0
+      r(:, a) = r1
+      if (lmgc) call lmgc_sums(3, p%wd(:, a), r0, r1, sums, maxes)
+    end do
+  end subroutine sweep_3d
+end module fracas_sdl
