@@ -7,11 +7,12 @@ module fracas_contact_laws
   use fracas_deck, only: law_input_t
   use fracas_errors, only: input_error
   use fracas_ids, only: st_slifw, st_slibw, st_cslfw, st_cslbw
+  use fracas_czm, only: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo
   implicit none
   private
   public :: law_t, law_from_input, law_friction, law_shift, &
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
-            law_vel_sgr_clb, law_rst_ds_clb
+            law_vel_sgr_clb, law_rst_ds_clb, law_czm
 
   !> Gaps below this (m) count as closed for the laws that act only on closed
   !> contacts: far below any physical length, far above round-off of coordinates.
@@ -19,7 +20,7 @@ module fracas_contact_laws
 
   integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
                         law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
-                        law_rst_ds_clb = 7
+                        law_rst_ds_clb = 7, law_czm = 8
 
   !> A contact law ready for the solver.
   type :: law_t
@@ -29,6 +30,7 @@ module fracas_contact_laws
     real(wp) :: mu_dynamic = 0.0_wp   !< friction used after sliding
     real(wp) :: mu_static = 0.0_wp    !< friction used otherwise
     real(wp) :: restn = 0.0_wp, restt = 0.0_wp  !< Newton restitution (RST laws)
+    type(czm_t) :: czm                          !< cohesive part (kind law_czm)
   end type law_t
 
 contains
@@ -65,11 +67,55 @@ contains
       law%restn = param(1)
       law%restt = param(2)
       call set_mu(param(3), param(4))
+    case ('IQS_MAC_CZM', 'MAC_CZM')
+      call set_czm(czm_mac)
+      law%czm%visco = param(5)
+      law%czm%w = param(6)
+    case ('MP3_CZM')
+      call set_czm(czm_mp3)
+      law%czm%smax = param(5)
+      law%czm%w = param(6)
+    case ('IQS_MAL_CZM', 'MAL_CZM', 'IQS_TH_CZM', 'TH_CZM', 'IQS_EXPO_CZM', 'EXPO_CZM')
+      select case (trim(inp%name))
+      case ('IQS_MAL_CZM', 'MAL_CZM')
+        call set_czm(czm_mal)
+      case ('IQS_TH_CZM', 'TH_CZM')
+        call set_czm(czm_th)
+        law%czm%dp1 = param(9)
+        law%czm%dp2 = param(10)
+      case default
+        call set_czm(czm_expo)
+        law%czm%eta = param(9)
+      end select
+      law%czm%s1 = param(5)
+      law%czm%s2 = param(6)
+      law%czm%g1 = param(7)
+      law%czm%g2 = param(8)
     case default
       call input_error(inp%src%file, inp%src%line, 9, "contact law '"//trim(inp%name)// &
         "' is read but not supported by the solver yet (supported: IQS_CLB, GAP_SGR_CLB, "// &
-        "VEL_SGR_CLB, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB)")
+        "VEL_SGR_CLB, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB, IQS_MAC_CZM, MAC_CZM, "// &
+        "MP3_CZM, IQS_MAL_CZM, MAL_CZM, IQS_TH_CZM, TH_CZM, IQS_EXPO_CZM, EXPO_CZM)")
     end select
+    if (law%kind == law_czm) then
+      if (law%czm%cn <= 0.0_wp .or. law%czm%ct <= 0.0_wp) call input_error(inp%src%file, inp%src%line, 0, &
+        "cohesive stiffnesses cn and ct of law '"//trim(inp%nickname)//"' must be > 0")
+      if (law%czm%visco < 0.0_wp) call input_error(inp%src%file, inp%src%line, 0, &
+        "damage viscosity of law '"//trim(inp%nickname)//"' must be >= 0")
+      select case (law%czm%family)
+      case (czm_mac)
+        if (law%czm%w <= 0.0_wp) call input_error(inp%src%file, inp%src%line, 0, &
+          "Dupré energy w of law '"//trim(inp%nickname)//"' must be > 0")
+      case (czm_mp3)
+        if (law%czm%w <= 0.0_wp .or. law%czm%smax <= 0.0_wp) call input_error(inp%src%file, inp%src%line, 0, &
+          "strength smax and energy w of law '"//trim(inp%nickname)//"' must be > 0")
+      case default
+        if (min(law%czm%s1, law%czm%s2, law%czm%g1, law%czm%g2) <= 0.0_wp) call input_error(inp%src%file, &
+          inp%src%line, 0, "strengths s1, s2 and energies G1, G2 of law '"//trim(inp%nickname)//"' must be > 0")
+        if (law%czm%family == czm_expo .and. (law%czm%eta <= 0.0_wp .or. law%czm%eta >= 1.0_wp)) &
+          call input_error(inp%src%file, inp%src%line, 0, "eta of law '"//trim(inp%nickname)//"' must be in (0, 1)")
+      end select
+    end if
     if (law%mu_dynamic < 0.0_wp .or. law%mu_static < 0.0_wp) &
       call input_error(inp%src%file, inp%src%line, 0, "friction coefficient of law '"// &
         trim(inp%nickname)//"' must be >= 0")
@@ -91,6 +137,17 @@ contains
         param = inp%params(i)
       end if
     end function param
+
+    !> Common part of the cohesive laws: dfric, sfric, cn, ct are parameters 1-4.
+    subroutine set_czm(family)
+      integer, intent(in) :: family
+      law%kind = law_czm
+      law%czm%family = family
+      law%czm%iqs = inp%name(1:4) == 'IQS_'
+      call set_mu(param(1), param(2))
+      law%czm%cn = param(3)
+      law%czm%ct = param(4)
+    end subroutine set_czm
 
     subroutine set_mu(dynamic, static)
       real(wp), intent(in) :: dynamic, static
@@ -131,6 +188,13 @@ contains
     case (law_gap_sgr_clb, law_gap_sgr_ds_clb)
       ! Signorini on the predicted end gap: overlaps are corrected.
       shift(2) = gap / h
+    case (law_czm)
+      ! The normal jump starts from the gap (IQS variants: its positive part).
+      if (law%czm%iqs) then
+        shift(2) = max(0.0_wp, gap) / h
+      else
+        shift(2) = gap / h
+      end if
     case (law_vel_sgr_clb)
       active = gap <= closed_gap
     case (law_rst_clb, law_rst_ds_clb)

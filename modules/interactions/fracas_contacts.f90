@@ -7,7 +7,9 @@ module fracas_contacts
   implicit none
   private
   public :: contacts_t, history_t, contacts_reserve, contacts_clear, history_from_contacts, &
-            history_find, history_build
+            history_find, history_build, n_internals
+
+  integer, parameter :: n_internals = 5   !< L, ut, un, beta, TPSini (2D cohesive laws)
 
   type :: contacts_t
     integer :: n = 0
@@ -29,6 +31,14 @@ module fracas_contacts
     real(wp), allocatable :: r(:, :)         !< (2,n) impulses (t, n)
     real(wp), allocatable :: u(:, :)         !< (2,n) relative velocity at the end of the step
     real(wp), allocatable :: u_begin(:, :)   !< (2,n) relative velocity at the beginning
+    real(wp), allocatable :: wi(:, :)        !< (6,n) what the local solver needs of its (effective) W
+    real(wp), allocatable :: length(:)       !< length carried by the contact point (cohesive laws)
+    ! Cohesive contacts: internals (L, ut, un, beta, time damage started) as
+    ! LMGC90 writes them, and the affine cohesive impulse r_coh = a + K u~
+    ! eliminated locally: coh = (A (4), W' = A W (4), a (2), K (2)), A = (I - W K)^-1.
+    real(wp), allocatable :: internals(:, :) !< (n_internals,n)
+    logical, allocatable :: cohesive(:)
+    real(wp), allocatable :: coh(:, :)       !< (12,n)
   end type contacts_t
 
   !> Contacts of the previous step, grouped by candidate contactor.
@@ -37,6 +47,7 @@ module fracas_contacts
     integer, allocatable :: first(:)         !< (ntactors+1) offsets into the lists
     integer, allocatable :: inter(:), an(:), sub(:), status(:)
     real(wp), allocatable :: force(:, :)     !< (2,n) reaction / time step
+    real(wp), allocatable :: internals(:, :) !< (n_internals,n)
   end type history_t
 
 contains
@@ -55,12 +66,14 @@ contains
               c%cdver(cap), c%anseg(cap), c%status(cap), &
               c%status_begin(cap), c%normal(2, cap), c%point(2, cap), c%gap(cap), c%lever(4, cap), &
               c%w(4, cap), c%shift(2, cap), c%mu(cap), c%active(cap), c%r(2, cap), c%u(2, cap), &
-              c%u_begin(2, cap))
+              c%u_begin(2, cap), c%wi(6, cap), c%length(cap), c%internals(n_internals, cap), &
+              c%cohesive(cap), c%coh(12, cap))
   contains
     subroutine free_all()
       deallocate (c%inter, c%cd, c%an, c%cdb, c%anb, c%law, c%sub, c%cdver, c%anseg, c%status, &
                   c%status_begin, c%normal, &
-                  c%point, c%gap, c%lever, c%w, c%shift, c%mu, c%active, c%r, c%u, c%u_begin)
+                  c%point, c%gap, c%lever, c%w, c%shift, c%mu, c%active, c%r, c%u, c%u_begin, c%wi, &
+                  c%length, c%internals, c%cohesive, c%coh)
     end subroutine free_all
   end subroutine contacts_reserve
 
@@ -70,16 +83,16 @@ contains
   end subroutine contacts_clear
 
   !> Group records (cd, an, sub, inter, status, force) by candidate contactor.
-  subroutine history_build(hist, ntactors, cd, an, sub, inter, status, force)
+  subroutine history_build(hist, ntactors, cd, an, sub, inter, status, force, internals)
     type(history_t), intent(out) :: hist
     integer, intent(in) :: ntactors, cd(:), an(:), sub(:), inter(:), status(:)
-    real(wp), intent(in) :: force(:, :)
+    real(wp), intent(in) :: force(:, :), internals(:, :)
     integer :: k, n, pos
     integer, allocatable :: fill(:)
     n = size(cd)
     hist%n = n
     allocate (hist%first(ntactors + 1), hist%inter(n), hist%an(n), hist%sub(n), hist%status(n), &
-              hist%force(2, n))
+              hist%force(2, n), hist%internals(n_internals, n))
     hist%first = 0
     do k = 1, n
       hist%first(cd(k) + 1) = hist%first(cd(k) + 1) + 1
@@ -97,6 +110,7 @@ contains
       hist%sub(pos) = sub(k)
       hist%status(pos) = status(k)
       hist%force(:, pos) = force(:, k)
+      hist%internals(:, pos) = internals(:, k)
     end do
   end subroutine history_build
 
@@ -109,7 +123,7 @@ contains
     integer :: n
     n = c%n
     call history_build(hist, ntactors, c%cd(1:n), c%an(1:n), c%sub(1:n), c%inter(1:n), c%status(1:n), &
-                       c%r(:, 1:n) / h)
+                       c%r(:, 1:n) / h, c%internals(:, 1:n))
   end subroutine history_from_contacts
 
   !> Index of the past contact (inter, cd, an, sub), 0 if there is none.

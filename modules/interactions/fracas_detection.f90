@@ -315,7 +315,7 @@ contains
     real(wp), intent(in) :: q(:, :)
     type(contacts_t), intent(inout) :: c
     integer :: p, icd, ian, bcd, ban, iedge, j
-    real(wp) :: gap, normal(2), point(2), ccd(2), can(2)
+    real(wp) :: gap, normal(2), point(2), ccd(2), can(2), len
     real(wp), allocatable :: pcd(:, :), pan(:, :)
     type(polygon_contact_t) :: pc
     call contacts_reserve(c, 2 * det%npairs)
@@ -330,34 +330,41 @@ contains
       select case (det%pair_inter(p))
       case (i_dkdkx)
         call dkdkx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
+        len = t%radius(icd) * t%radius(ian) / (t%radius(icd) + t%radius(ian))
         if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
       case (i_dkjcx)
         call dkjcx_geometry(ccd, t%radius(icd), can, q(3, ban), t%ax1(ian), t%ax2(ian), gap, normal, point)
+        len = t%radius(icd)
         if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
       case (i_dkkdx)
         call dkkdx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
+        len = t%radius(icd)
         if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
       case (i_dkplx)
         pan = tactor_vertices(t, ian, q(:, ban))
         call dkplx_geometry(ccd, t%radius(icd), pan, gap, normal, point, iedge)
+        len = t%radius(icd)
         if (gap <= det%pair_alert(p)) call add(icd, ian, 0, iedge)
       case (i_plplx)
-        ! The rough pair's antagonist (lower index) is preferred as reference face.
+        ! The rough pair's first contactor (lower index) is preferred as the
+        ! reference face, i.e. the antagonist (as LMGC90 chooses).
         pcd = tactor_vertices(t, icd, q(:, bcd))
         pan = tactor_vertices(t, ian, q(:, ban))
-        call polygon_pair(pan, pcd, det%pair_alert(p), .false., pc)
+        call polygon_pair(pcd, pan, det%pair_alert(p), .false., pc)
+        len = pair_length(pc, t%bound(icd) * t%bound(ian) / (t%bound(icd) + t%bound(ian)))
         do j = 1, pc%n
           gap = pc%gap(j); normal = pc%normal; point = pc%point(:, j)
           if (pc%ref_is_a) then
-            call add(icd, ian, pc%cdver(j), pc%anseg)
-          else
             call add(ian, icd, pc%cdver(j), pc%anseg)
+          else
+            call add(icd, ian, pc%cdver(j), pc%anseg)
           end if
         end do
       case (i_pljcx)
         pcd = tactor_vertices(t, icd, q(:, bcd))
         call polygon_pair(wall_rectangle(can, q(3, ban), t%ax1(ian), t%ax2(ian)), pcd, det%pair_alert(p), &
                           .true., pc)
+        len = pair_length(pc, t%bound(icd))
         do j = 1, pc%n
           gap = pc%gap(j); normal = pc%normal; point = pc%point(:, j)
           call add(icd, ian, pc%cdver(j), pc%anseg)
@@ -387,6 +394,7 @@ contains
       c%normal(:, k) = normal
       c%point(:, k) = point
       c%gap(k) = gap
+      c%length(k) = len
       tang = [normal(2), -normal(1)]
       rcd = point - q(1:2, b1)
       ran = point - q(1:2, b2)
@@ -399,6 +407,18 @@ contains
       c%r(:, k) = 0.0_wp
     end subroutine add
   end subroutine detect_fine
+
+  !> Length carried by each point of a polygon pair: half the distance between
+  !> the two points of a face-to-face pair, else reff pi/18 (as LMGC90).
+  pure real(wp) function pair_length(pc, reff)
+    type(polygon_contact_t), intent(in) :: pc
+    real(wp), intent(in) :: reff
+    if (pc%n == 2) then
+      pair_length = 0.5_wp * norm2(pc%point(:, 1) - pc%point(:, 2))
+    else
+      pair_length = reff * acos(-1.0_wp) / 18.0_wp
+    end if
+  end function pair_length
 
   !> A JONCx wall as the rectangle of its flat part (counter-clockwise).
   pure function wall_rectangle(c, angle, ax1, ax2) result(v)

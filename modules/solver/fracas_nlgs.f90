@@ -5,17 +5,18 @@
 !> sweep of each block, and after convergence with the FCLib natural map.
 module fracas_nlgs
   use fracas_kinds, only: wp
-  use fracas_ids, only: st_noctc
+  use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw, st_cnctc, st_cstck, st_cslfw, st_cslbw
   use fracas_random, only: rng_t, rng_seed, rng_permute
   use fracas_rbdy2, only: rbdy2_t
   use fracas_contacts, only: contacts_t
-  use fracas_contact_laws, only: law_t, law_shift, law_friction
+  use fracas_contact_laws, only: law_t, law_shift, law_friction, law_czm
+  use fracas_czm, only: czm_t, czm_beta_power, czm_beta_update, czm_stored_energy
   use fracas_local_solver, only: gs_sweep_2d, natural_map_2d, inverse_block
   use fracas_errors, only: fatal
   implicit none
   private
   public :: nlgs_settings_t, nlgs_report_t, nlgs_t, nlgs_init, nlgs_prepare, nlgs_solve, &
-            contact_velocity
+            contact_velocity, nlgs_update_cohesive
 
   type :: nlgs_settings_t
     character(len=5) :: check = 'Quad '
@@ -45,7 +46,6 @@ module fracas_nlgs
     real(wp), allocatable :: qfree(:, :)   !< (2,n) free local velocity incl. law shift
     integer, allocatable :: body(:, :)     !< (2,n) candidate, antagonist body (packed for the sweep)
     real(wp), allocatable :: geo(:, :)     !< (6,n) normal and lever arms (packed for the sweep)
-    real(wp), allocatable :: wi(:, :)      !< (6,n) inverse_block of each contact
   end type nlgs_t
 
 contains
@@ -69,6 +69,56 @@ contains
     u(1) = dv(1) * c%normal(2, k) - dv(2) * c%normal(1, k) + v(3, a) * c%lever(1, k) - v(3, b) * c%lever(3, k)
     u(2) = dv(1) * c%normal(1, k) + dv(2) * c%normal(2, k) + v(3, a) * c%lever(2, k) - v(3, b) * c%lever(4, k)
   end function contact_velocity
+
+  !> Component i (1: t, 2: n) of the cohesive impulse a + K u~ of contact k at
+  !> its current velocity (0 for a contact without cohesion).
+  pure real(wp) function cohesive_impulse(c, k, i) result(rc)
+    type(contacts_t), intent(in) :: c
+    integer, intent(in) :: k, i
+    rc = 0.0_wp
+    if (c%cohesive(k)) rc = c%coh(8 + i, k) + c%coh(10 + i, k) * (c%u(i, k) + c%shift(i, k))
+  end function cohesive_impulse
+
+  !> After convergence: the jumps, the damage beta and the time damage started
+  !> of the cohesive contacts (stored in internals), their statuses relabelled
+  !> cohesive, and the energies: stored cohesive energy at the end of the step,
+  !> work of the cohesive impulses -r_coh.(u + u_begin)/2 over the step.
+  subroutine nlgs_update_cohesive(c, laws, h, t_end, stored, coh_work)
+    type(contacts_t), intent(inout) :: c
+    type(law_t), intent(in) :: laws(:)
+    real(wp), intent(in) :: h, t_end
+    real(wp), intent(out) :: stored, coh_work
+    integer :: k
+    real(wp) :: ut, un, beta, rc(2)
+    stored = 0.0_wp
+    coh_work = 0.0_wp
+    do k = 1, c%n
+      if (laws(c%law(k))%kind /= law_czm) cycle
+      associate (z => laws(c%law(k))%czm)
+        rc = [cohesive_impulse(c, k, 1), cohesive_impulse(c, k, 2)]
+        coh_work = coh_work - 0.5_wp * sum(rc * (c%u(:, k) + c%u_begin(:, k)))
+        ut = c%internals(2, k) + h * c%u(1, k)
+        un = h * (c%u(2, k) + c%shift(2, k))
+        beta = czm_beta_update(z, c%internals(4, k), ut, un, h)
+        if (beta < 1.0_wp .and. c%internals(5, k) < 0.0_wp) c%internals(5, k) = t_end
+        c%internals(1:4, k) = [c%length(k), ut, un, beta]
+        stored = stored + c%length(k) * czm_stored_energy(z, beta, ut, un)
+        if (c%cohesive(k)) then
+          select case (c%status(k))
+          case (st_noctc)
+            if (any(c%r(:, k) /= 0.0_wp)) then
+              c%status(k) = st_cstck
+            else
+              c%status(k) = st_cnctc
+            end if
+          case (st_stick); c%status(k) = st_cstck
+          case (st_slifw); c%status(k) = st_cslfw
+          case (st_slibw); c%status(k) = st_cslbw
+          end select
+        end if
+      end associate
+    end do
+  end subroutine nlgs_update_cohesive
 
   !> Per-contact data of the step: Delassus blocks from the inverse masses and
   !> lever arms, velocities at the beginning of the step, law shifts, friction.
@@ -96,11 +146,55 @@ contains
       call law_shift(laws(c%law(k)), c%gap(k), h, c%u_begin(:, k), c%shift(:, k), active)
       c%active(k) = active .and. c%w(4, k) > 1.0e-18_wp
       c%mu(k) = law_friction(laws(c%law(k)), c%status_begin(k))
+      c%cohesive(k) = .false.
+      if (laws(c%law(k))%kind == law_czm) call prepare_cohesive(k, laws(c%law(k))%czm)
       if (.not. c%active(k)) then
         c%r(:, k) = 0.0_wp
         c%status(k) = st_noctc   ! as LMGC90 reports a contact the law leaves open
+      else if (c%cohesive(k)) then
+        ! Between bodies that cannot move along the normal (both driven) the
+        ! cohesive impulse still acts; the contact part then stays zero.
+        c%wi(:, k) = 0.0_wp
+        if (c%coh(5, k) * c%coh(8, k) - c%coh(6, k) * c%coh(7, k) > 1.0e-30_wp * max(c%coh(8, k), tiny(1.0_wp))**2 &
+            .and. c%coh(8, k) > 1.0e-18_wp) &
+          c%wi(:, k) = inverse_block(c%coh(5, k), c%coh(6, k), c%coh(7, k), c%coh(8, k), c%mu(k))
+      else
+        c%wi(:, k) = inverse_block(c%w(1, k), c%w(2, k), c%w(3, k), c%w(4, k), c%mu(k))
       end if
     end do
+
+  contains
+
+    !> Cohesive contact with beta frozen over the step: friction mu (1-beta)^p and
+    !> the impulse r_coh = a + K u~ (u~ = u + shift), eliminated locally:
+    !> (I - W K) u~ = u~free + W a + W r_c, A = (I - W K)^-1, W' = A W.
+    subroutine prepare_cohesive(k, z)
+      integer, intent(in) :: k
+      type(czm_t), intent(in) :: z
+      real(wp) :: beta, e, kt, kn, m(4), det, amat(4), wp_(4), at
+      beta = c%internals(4, k)
+      c%mu(k) = c%mu(k) * (1.0_wp - beta)**z%friction_power
+      if (beta <= 0.0_wp) return
+      c%cohesive(k) = .true.
+      e = beta**czm_beta_power(z) * c%length(k)
+      kt = -h**2 * e * z%ct
+      kn = -h**2 * e * z%cn
+      at = -h * e * z%ct * c%internals(2, k)     ! tangential jump at the beginning of the step
+      m = [1.0_wp - c%w(1, k) * kt, -c%w(2, k) * kn, -c%w(3, k) * kt, 1.0_wp - c%w(4, k) * kn]
+      det = m(1) * m(4) - m(2) * m(3)
+      amat = [m(4), -m(2), -m(3), m(1)] / det
+      wp_(1) = amat(1) * c%w(1, k) + amat(2) * c%w(3, k)
+      wp_(2) = amat(1) * c%w(2, k) + amat(2) * c%w(4, k)
+      wp_(3) = amat(3) * c%w(1, k) + amat(4) * c%w(3, k)
+      wp_(4) = amat(3) * c%w(2, k) + amat(4) * c%w(4, k)
+      c%coh(1:4, k) = amat
+      c%coh(5:8, k) = wp_
+      c%coh(9:10, k) = [at, 0.0_wp]
+      c%coh(11:12, k) = [kt, kn]
+      ! The tensile cohesive impulse also acts while the gap is open, and
+      ! between bodies whose normal motion is driven.
+      c%active(k) = .true.
+    end subroutine prepare_cohesive
   end subroutine nlgs_prepare
 
   !> Solve the step's contact problem. On entry b%v = vfree and c%r holds the
@@ -115,21 +209,23 @@ contains
     n = c%n
     report%sweeps = 0
     if (allocated(solver%order)) then
-      if (size(solver%order) < n) deallocate (solver%order, solver%qfree, solver%body, solver%geo, solver%wi)
+      if (size(solver%order) < n) deallocate (solver%order, solver%qfree, solver%body, solver%geo)
     end if
     if (.not. allocated(solver%order)) allocate (solver%order(max(n, 16)), solver%qfree(2, max(n, 16)), &
-                                                 solver%body(2, max(n, 16)), solver%geo(6, max(n, 16)), &
-                                                 solver%wi(6, max(n, 16)))
+                                                 solver%body(2, max(n, 16)), solver%geo(6, max(n, 16)))
     do k = 1, n
       solver%body(:, k) = [c%cdb(k), c%anb(k)]
       solver%geo(1:2, k) = c%normal(:, k)
       solver%geo(3:6, k) = c%lever(:, k)
-      if (c%active(k)) solver%wi(:, k) = inverse_block(c%w(1, k), c%w(2, k), c%w(3, k), c%w(4, k), c%mu(k))
       solver%qfree(:, k) = contact_velocity(c, k, b%v) + c%shift(:, k)
       if (c%active(k)) call inject(k, c%r(1, k), c%r(2, k))
     end do
+    ! Velocity scale of the step: free relative velocities and body speeds.
     vscale = 0.0_wp
-    if (n > 0) vscale = sqrt(sum(solver%qfree(:, 1:n)**2) / n)
+    do k = 1, n
+      vscale = vscale + sum(solver%qfree(:, k)**2) + sum(b%vfree(1:2, c%cdb(k))**2) + sum(b%vfree(1:2, c%anb(k))**2)
+    end do
+    if (n > 0) vscale = sqrt(vscale / n)
     select case (solver%s%order)
     case ('reversed')
       solver%order(1:n) = [(n + 1 - k, k=1, n)]
@@ -159,8 +255,9 @@ contains
       else
         report%nactive = report%nactive + 1
       end if
+      ! The natural map of the contact part (the total minus the cohesive impulse).
       fsum = fsum + natural_map_2d(c%u(1, k) + c%shift(1, k), c%u(2, k) + c%shift(2, k), &
-                                   c%r(1, k), c%r(2, k), c%mu(k))
+                                   c%r(1, k) - cohesive_impulse(c, k, 1), c%r(2, k) - cohesive_impulse(c, k, 2), c%mu(k))
       qsum = qsum + sum(solver%qfree(:, k)**2)
     end do
     report%residual = 0.0_wp
@@ -188,7 +285,8 @@ contains
     subroutine sweep(check)
       logical, intent(in) :: check
       real(wp) :: s6(6)
-      call gs_sweep_2d(solver%order(1:n), c%active, solver%body, solver%geo, c%w, solver%wi, c%shift, c%mu, c%r, &
+      call gs_sweep_2d(solver%order(1:n), c%active, c%cohesive, c%coh, solver%body, solver%geo, c%w, c%wi, &
+                       c%shift, c%mu, c%r, &
                        c%status, b%v, b%inv_mass, solver%s%relax, check, s6, maxes)
       if (check) sums(1:6) = s6
     end subroutine sweep

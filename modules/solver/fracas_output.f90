@@ -12,6 +12,7 @@ module fracas_output
   use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc
   use fracas_scene, only: scene_t, step_report_t
   use fracas_version, only: version_string
+  use fracas_contact_laws, only: law_czm
   use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close
@@ -20,12 +21,12 @@ module fracas_output
   public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
             output_close, series_names
 
-  integer, parameter :: n_series = 21
+  integer, parameter :: n_series = 23
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
     'step', 'time', 'contacts', 'active_contacts', 'sweeps', 'converged', 'residual_natural_map', &
     'residual_onepq', 'quad_dv', 'maxm_dv', 'mean_dvor', 'kinetic_energy', 'work_gravity', &
-    'work_forces', 'work_supports', 'dissipated', 'balance_error', 'mean_overlap', 'max_overlap', &
-    'solve_time', 'step_time']
+    'work_forces', 'work_supports', 'dissipated', 'cohesive_energy', 'damage_dissipated', 'balance_error', &
+    'mean_overlap', 'max_overlap', 'solve_time', 'step_time']
   integer, parameter :: n_outline = 24   !< segments of a circle outline
 
   type :: output_t
@@ -261,7 +262,11 @@ contains
           recs(pos)%normal = c%normal(:, k)
           recs(pos)%coor = c%point(:, k)
           recs(pos)%has_geometry = .true.
-          allocate (recs(pos)%internals(0))
+          if (sc%laws(c%law(k))%kind == law_czm) then
+            recs(pos)%internals = c%internals(:, k)
+          else
+            allocate (recs(pos)%internals(0))
+          end if
         end do
       end do
     end associate
@@ -291,11 +296,13 @@ contains
     type(step_report_t), intent(in) :: rep
     real(wp) :: balance
     if (.not. o%h5_open) return
-    balance = rep%kinetic - sc%kinetic0 - (sc%work_gravity + sc%work_forces + sc%work_supports - sc%dissipated)
+    balance = rep%kinetic + sc%cohesive_energy - sc%kinetic0 - &
+              (sc%work_gravity + sc%work_forces + sc%work_supports - sc%dissipated)
     call results_append_step(o%h5, [real(sc%step, wp), sc%time, real(rep%contacts, wp), &
       real(rep%nlgs%nactive, wp), real(rep%nlgs%sweeps, wp), merge(1.0_wp, 0.0_wp, rep%nlgs%converged), &
       rep%nlgs%residual, rep%nlgs%residual_onepq, rep%nlgs%quad_dv, rep%nlgs%maxm_dv, rep%nlgs%mean_dvor, &
-      rep%kinetic, sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, balance, &
+      rep%kinetic, sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, sc%cohesive_energy, &
+      sc%damage_dissipated, balance, &
       rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds])
   end subroutine output_series
 

@@ -12,8 +12,10 @@ module fracas_scene
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
   use fracas_contact_laws, only: law_t, law_from_input
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
-  use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts
-  use fracas_nlgs, only: nlgs_t, nlgs_settings_t, nlgs_report_t, nlgs_init, nlgs_prepare, nlgs_solve
+  use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts, &
+                             n_internals
+  use fracas_nlgs, only: nlgs_t, nlgs_settings_t, nlgs_report_t, nlgs_init, nlgs_prepare, nlgs_solve, &
+                         nlgs_update_cohesive
   implicit none
   private
   public :: scene_t, step_report_t, scene_build, scene_step, scene_body_impulses
@@ -46,6 +48,9 @@ module fracas_scene
     ! Energy audit, accumulated over the run (J per unit thickness).
     real(wp) :: kinetic0 = 0.0_wp, work_gravity = 0.0_wp, work_forces = 0.0_wp
     real(wp) :: work_supports = 0.0_wp, dissipated = 0.0_wp
+    ! Cohesive zones: energy stored in the cohesive springs now (zero at the
+    ! start: jumps start at 0), and the part of the dissipation due to damage.
+    real(wp) :: cohesive_energy = 0.0_wp, damage_dissipated = 0.0_wp
   end type scene_t
 
 contains
@@ -56,7 +61,8 @@ contains
     type(scene_t), intent(out) :: sc
     integer :: nb, ib, im, k, j, pos
     integer, allocatable :: number(:), cd(:), an(:), sub(:), inter(:), status(:)
-    real(wp), allocatable :: ref(:, :), mass(:), inertia(:), avrd(:), force(:, :)
+    real(wp), allocatable :: ref(:, :), mass(:), inertia(:), avrd(:), force(:, :), internals(:, :)
+    real(wp) :: rec_internals(n_internals)
     real(wp) :: density, area, polar, gyrd
     character(len=5), allocatable :: nick(:)
     type(nlgs_settings_t) :: ns
@@ -129,7 +135,7 @@ contains
     allocate (sc%q(3, nb))
 
     ! History from Vloc_Rloc.INI: contactors named by (body, rank in body).
-    allocate (cd(0), an(0), sub(0), inter(0), status(0), force(2, 0))
+    allocate (cd(0), an(0), sub(0), inter(0), status(0), force(2, 0), internals(n_internals, 0))
     do k = 1, size(deck%vloc_ini)
       associate (r => deck%vloc_ini(k))
         j = inter_id(r%inter)
@@ -142,9 +148,15 @@ contains
         if (pos == 0) call input_error(r%src%file, r%src%line, 71, "unknown contact status '"//r%status//"'")
         status = [status, pos]
         force = reshape([force, [r%rlt, r%rln]], [2, size(cd)])
+        rec_internals = 0.0_wp
+        if (allocated(r%internals)) then
+          pos = min(n_internals, size(r%internals))
+          rec_internals(1:pos) = r%internals(1:pos)
+        end if
+        internals = reshape([internals, rec_internals], [n_internals, size(cd)])
       end associate
     end do
-    call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force)
+    call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, internals)
 
     ns%check = deck%run%nlgs_check
     ns%tol = deck%run%nlgs_tolerance
@@ -200,7 +212,7 @@ contains
     type(step_report_t), intent(out) :: rep
     integer :: k, pos, nover
     integer(i8) :: t0, t1, t2, rate
-    real(wp) :: margin, vmax, gap_end, dx(3)
+    real(wp) :: margin, vmax, gap_end, dx(3), stored, coh_work, dissipated_all
     call system_clock(t0, rate)
     associate (b => sc%bodies, c => sc%contacts)
       call rbdy2_begin_step(b, sc%time, sc%h, sc%theta)
@@ -223,6 +235,11 @@ contains
         if (pos > 0) then
           c%r(:, k) = sc%h * sc%hist%force(:, pos)
           c%status_begin(k) = sc%hist%status(pos)
+          c%internals(:, k) = sc%hist%internals(:, pos)
+        else
+          ! Interfaces present at the start of a simulation are glued (beta = 1);
+          ! contacts made later start without cohesion.
+          c%internals(:, k) = [c%length(k), 0.0_wp, 0.0_wp, merge(1.0_wp, 0.0_wp, sc%step == 0), -99.0_wp]
         end if
       end do
       call nlgs_prepare(c, b, sc%laws, sc%h)
@@ -230,6 +247,7 @@ contains
       call nlgs_solve(sc%solver, c, b, rep%nlgs)
       call system_clock(t2)
       rep%solve_seconds = real(t2 - t1, wp) / real(rate, wp)
+      call nlgs_update_cohesive(c, sc%laws, sc%h, sc%time + sc%h, stored, coh_work)
 
       ! Energy audit of the step (before the begin state is overwritten).
       do k = 1, b%n
@@ -246,10 +264,11 @@ contains
         end associate
       end do
       sc%work_supports = sc%work_supports + support_work(sc)
+      dissipated_all = 0.0_wp
       nover = 0
       do k = 1, c%n
         if (.not. c%active(k)) cycle
-        sc%dissipated = sc%dissipated - 0.5_wp * sum(c%r(:, k) * (c%u(:, k) + c%u_begin(:, k)))
+        dissipated_all = dissipated_all - 0.5_wp * sum(c%r(:, k) * (c%u(:, k) + c%u_begin(:, k)))
         gap_end = c%gap(k) + sc%h * c%u(2, k)
         if (gap_end < 0.0_wp) then
           rep%mean_overlap = rep%mean_overlap - gap_end
@@ -258,6 +277,11 @@ contains
         end if
       end do
       if (nover > 0) rep%mean_overlap = rep%mean_overlap / nover
+      ! Contact work -r.(u + u_begin)/2 is dissipated, except what the cohesive
+      ! springs store; of the cohesive work, what is not stored went into damage.
+      sc%dissipated = sc%dissipated + dissipated_all - (stored - sc%cohesive_energy)
+      sc%damage_dissipated = sc%damage_dissipated + coh_work - (stored - sc%cohesive_energy)
+      sc%cohesive_energy = stored
 
       call rbdy2_end_step(b, sc%h, sc%theta)
       call history_from_contacts(sc%hist, c, sc%tactors%n, sc%h)
