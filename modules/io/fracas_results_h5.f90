@@ -186,10 +186,11 @@ contains
 
   !> One snapshot /snapshots/NNNNNN (1, 2, ... zero-padded to 6 digits): body
   !> states X, V (ndof, nb) and the contacts (nc of them). normal, point,
-  !> reaction (rt, rn forces), velocity (ut, un) are (2, nc); internals (nint, nc).
+  !> reaction (rt, rn forces), velocity (ut, un) are (2, nc); internals (nint, nc);
+  !> broken (nc) flags the cohesive interfaces that are broken (beta = 0).
   subroutine results_write_snapshot(r, step, time, X, V, inter, cd_body, an_body, cd_tactor, &
                                     an_tactor, status, law, normal, point, reaction, velocity, gap, &
-                                    internals)
+                                    internals, broken)
     type(results_h5_t), intent(inout) :: r
     integer(ik), intent(in) :: step
     real(wp), intent(in) :: time
@@ -198,6 +199,7 @@ contains
                                status(:), law(:)
     real(wp), intent(in) :: normal(:, :), point(:, :), reaction(:, :), velocity(:, :), gap(:)
     real(wp), intent(in), optional :: internals(:, :)
+    integer(ik), intent(in), optional :: broken(:)   !< 1 where a cohesive interface is broken
     character(len=*), parameter :: w = 'results_write_snapshot'
     integer(hid_t) :: gs, g, gsub
     integer :: nc
@@ -218,6 +220,7 @@ contains
     call pair_shape(w, 'reaction', reaction, nc)
     call pair_shape(w, 'velocity', velocity, nc)
     if (present(internals)) call same_size(w, 'internals columns', size(internals, 2), nc)
+    if (present(broken)) call same_size(w, 'broken', size(broken), nc)
 
     r%nsnap = r%nsnap + 1
     name = snapshot_name(r%nsnap)
@@ -247,6 +250,7 @@ contains
     call h5_write_dataset(gsub, 'velocity', velocity)
     call h5_write_dataset(gsub, 'gap', gap)
     if (present(internals)) call h5_write_dataset(gsub, 'internals', internals)
+    if (present(broken)) call h5_write_dataset(gsub, 'broken', broken)
     call h5_close_group(gsub)
     call h5_close_group(g)
 

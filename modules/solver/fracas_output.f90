@@ -181,11 +181,11 @@ contains
   subroutine write_contacts_vtu(path, sc)
     character(len=*), intent(in) :: path
     type(scene_t), intent(in) :: sc
-    real(wp), allocatable :: pts(:, :), nrm(:, :), reac(:, :), rn(:), rt(:), gap(:)
+    real(wp), allocatable :: pts(:, :), nrm(:, :), reac(:, :), rn(:), rt(:), gap(:), beta(:)
     integer(ik), allocatable :: conn(:), offs(:), types(:), status(:), inter(:), cdb(:), anb(:)
     integer :: k, n
     n = sc%contacts%n
-    allocate (pts(3, n), nrm(3, n), reac(3, n), rn(n), rt(n), gap(n), conn(n), offs(n), types(n), &
+    allocate (pts(3, n), nrm(3, n), reac(3, n), rn(n), rt(n), gap(n), beta(n), conn(n), offs(n), types(n), &
               status(n), inter(n), cdb(n), anb(n))
     associate (c => sc%contacts)
       do k = 1, n
@@ -196,6 +196,8 @@ contains
         reac(:, k) = [rt(k) * c%normal(2, k) + rn(k) * c%normal(1, k), &
                       -rt(k) * c%normal(1, k) + rn(k) * c%normal(2, k), 0.0_wp]
         gap(k) = c%gap(k) + sc%h * c%u(2, k)
+        beta(k) = 0.0_wp
+        if (sc%laws(c%law(k))%kind == law_czm) beta(k) = c%internals(4, k)
         conn(k) = int(k - 1, ik)
         offs(k) = int(k, ik)
         types(k) = vtk_vertex
@@ -208,7 +210,8 @@ contains
     call write_vtu(path, pts, conn, offs, types, &
                    cell_fields=[vtk_field('normal', nrm), vtk_field('reaction', reac), vtk_field('rn', rn), &
                                 vtk_field('rt', rt), vtk_field('gap', gap), vtk_field('status', status), &
-                                vtk_field('inter', inter), vtk_field('cd_body', cdb), vtk_field('an_body', anb)], &
+                                vtk_field('inter', inter), vtk_field('cd_body', cdb), vtk_field('an_body', anb), &
+                                vtk_field('beta', beta), vtk_field('broken', broken_flags(sc))], &
                    time=sc%time)
   end subroutine write_contacts_vtu
 
@@ -283,9 +286,16 @@ contains
     n = sc%contacts%n
     associate (c => sc%contacts, t => sc%tactors)
       gap_end = c%gap(1:n) + sc%h * c%u(2, 1:n)
-      call results_write_snapshot(o%h5, sc%step, sc%time, sc%bodies%x, sc%bodies%v, c%inter(1:n), &
-        sc%bodies%number(c%cdb(1:n)), sc%bodies%number(c%anb(1:n)), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
-        c%status(1:n), c%law(1:n), c%normal(:, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end)
+      if (any(sc%laws%kind == law_czm)) then
+        call results_write_snapshot(o%h5, sc%step, sc%time, sc%bodies%x, sc%bodies%v, c%inter(1:n), &
+          sc%bodies%number(c%cdb(1:n)), sc%bodies%number(c%anb(1:n)), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
+          c%status(1:n), c%law(1:n), c%normal(:, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end, &
+          internals=c%internals(:, 1:n), broken=broken_flags(sc))
+      else
+        call results_write_snapshot(o%h5, sc%step, sc%time, sc%bodies%x, sc%bodies%v, c%inter(1:n), &
+          sc%bodies%number(c%cdb(1:n)), sc%bodies%number(c%anb(1:n)), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
+          c%status(1:n), c%law(1:n), c%normal(:, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end)
+      end if
     end associate
   end subroutine output_snapshot
 
@@ -305,6 +315,18 @@ contains
       sc%damage_dissipated, balance, &
       rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds])
   end subroutine output_series
+
+  !> 1 for the contacts of a cohesive law whose interface is broken (beta = 0).
+  function broken_flags(sc) result(f)
+    type(scene_t), intent(in) :: sc
+    integer(ik), allocatable :: f(:)
+    integer :: k
+    allocate (f(sc%contacts%n))
+    do k = 1, sc%contacts%n
+      f(k) = 0
+      if (sc%laws(sc%contacts%law(k))%kind == law_czm .and. sc%contacts%internals(4, k) <= 0.0_wp) f(k) = 1
+    end do
+  end function broken_flags
 
   subroutine output_close(o)
     type(output_t), intent(inout) :: o

@@ -48,7 +48,13 @@ def read_vloc(path):
             status = words[-2]
             vals = [float(x.replace("D", "E").replace("d", "e")) for x in NUM.findall(lines[i + 3])]
             key = (inter, cdbdy, cdtac, cdver, anbdy, antac)
-            out[key] = dict(status=status, rlt=vals[0], rln=vals[1])
+            internals = []
+            j = i + 4
+            while j < len(lines) and not lines[j].startswith("$icdan"):
+                if lines[j].startswith("#taille_ele") and j + 1 < len(lines):
+                    internals = [float(x.replace("D", "E")) for x in NUM.findall(lines[j + 1])]
+                j += 1
+            out[key] = dict(status=status, rlt=vals[0], rln=vals[1], internals=internals)
             i += 3
         i += 1
     return out
@@ -82,6 +88,12 @@ def exact(a):
     # Statuses only mean something where the reaction is not negligible.
     bad = [k for k in common if abs(vr[k]["rln"]) > max(a.rtol * rmax, a.rfloor) and vo[k]["status"] != vr[k]["status"]]
     report("statuses of loaded contacts", len(common) - len(bad), len(common), float(len(bad)), 0.0, not bad)
+    # Cohesive internals (L, ut, un, beta, TPSini): relative to each value.
+    with_int = [k for k in common if vr[k]["internals"]]
+    if with_int:
+        ei = max(abs(x - y) / max(abs(y), 1e-30) if abs(y) > 1e-12 else abs(x - y)
+                 for k in with_int for x, y in zip(vo[k]["internals"], vr[k]["internals"]))
+        report("cohesive internals (L, ut, un, beta, TPSini), relative", "", "", ei, a.itol, ei <= a.itol)
 
 
 def stats(a):
@@ -117,6 +129,7 @@ def main():
     p.add_argument("--rtol", type=float, default=1e-4)
     p.add_argument("--vfloor", type=float, default=1e-9)
     p.add_argument("--rfloor", type=float, default=1e-9)
+    p.add_argument("--itol", type=float, default=1e-6)
     p.add_argument("--ctol", type=float, default=0.15)
     p.add_argument("--htol", type=float, default=0.005)
     a = p.parse_args()
