@@ -216,3 +216,27 @@ class Checker:
         print(f"== {self.case}: {len(self.rows) - nfail}/{len(self.rows)} checks passed"
               + (f", {nfail} FAILED" if nfail else ""))
         return 1 if nfail else 0
+
+
+# --------------------------------------------------------------------------------------
+# deck-precision helpers
+# --------------------------------------------------------------------------------------
+
+def r8(x):
+    """x as the DATBOX files hold it (8 significant digits, %.7E)."""
+    return float(f"{x:.7E}")
+
+
+def snap_on_line(P, d, n, offset_n, start, search=1.0e-3, samples=200001):
+    """A body centre P + s d + offset_n n with s in [start, start + search] chosen so
+    that, once rounded to the DATBOX's 8 significant digits, its distance to the line
+    (P, d) is still offset_n to round-off: only the normal component of the rounding
+    error opens or closes a gap, and a 1-D search along d finds a point where it is
+    below 1e-12 m. Returns (rounded centre (2,), normal error, s)."""
+    P, d, n = (np.asarray(v, dtype=float) for v in (P, d, n))
+    s = start + np.linspace(0.0, search, samples)
+    c = P[None, :] + s[:, None] * d[None, :] + offset_n * n[None, :]
+    cr = np.vectorize(r8)(c)
+    err = np.abs((cr - c) @ n)
+    i = int(np.argmin(err))
+    return cr[i], float(err[i]), float(s[i])
