@@ -19,7 +19,8 @@ program fracas
   type(scene_t) :: sc
   type(output_t) :: out
   type(step_report_t) :: rep
-  integer :: i, nargs, nsteps, istep, every, total_sweeps, unconverged, len_arg
+  integer :: i, nargs, nsteps, istep, every, total_sweeps, unconverged, len_arg, late
+  real(wp) :: late_max
   integer(int64) :: t0, t1, rate
   real(wp) :: elapsed, worst_residual
 
@@ -87,13 +88,15 @@ contains
     if (deck%run%output_vtk_every > 0) call output_vtk(out, sc)
     every = deck%run%progress_every
     if (every <= 0) every = max(1, nsteps / 20)
-    total_sweeps = 0; unconverged = 0; worst_residual = 0.0_wp
+    total_sweeps = 0; unconverged = 0; worst_residual = 0.0_wp; late = 0; late_max = 0.0_wp
     call system_clock(t0, rate)
     do istep = 1, nsteps
       call scene_step(sc, rep)
       total_sweeps = total_sweeps + rep%nlgs%sweeps
       if (.not. rep%nlgs%converged) unconverged = unconverged + 1
       worst_residual = max(worst_residual, rep%nlgs%residual)
+      late = late + rep%late_contacts
+      late_max = max(late_max, rep%late_overlap)
       call output_series(out, sc, rep)
       if (every_n(deck%run%output_vtk_every)) call output_vtk(out, sc)
       if (every_n(deck%run%output_hdf5_every)) call output_snapshot(out, sc)
@@ -109,6 +112,14 @@ contains
         ' s, ', total_sweeps, ' NLGS sweeps, worst natural-map residual ', worst_residual
       write (output_unit, '(a)') 'fracas: results: '//out_dir//'/OUTBOX/fracas.h5'
       if (deck%run%output_vtk_every > 0) write (output_unit, '(a)') 'fracas: ParaView: '//out_dir//'/DISPLAY/fracas.pvd'
+    end if
+    if (late > 0) then
+      block
+        character(len=200) :: msg
+        write (msg, '(i0,a,es9.2,a)') late, ' contacts were first detected already overlapping (up to ', late_max, &
+          ' m): bodies move more than the alert distance in one step; raise the alert distance or lower the time step'
+        call warn(trim(msg))
+      end block
     end if
     if (unconverged > 0) then
       block

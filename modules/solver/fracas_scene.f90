@@ -28,6 +28,8 @@ module fracas_scene
     integer :: contacts = 0
     real(wp) :: kinetic = 0.0_wp
     real(wp) :: mean_overlap = 0.0_wp, max_overlap = 0.0_wp
+    integer :: late_contacts = 0         !< new contacts already overlapping when first detected
+    real(wp) :: late_overlap = 0.0_wp    !< their largest overlap
     real(wp) :: solve_seconds = 0.0_wp   !< wall time of the contact solve
     real(wp) :: step_seconds = 0.0_wp    !< wall time of the whole step
   end type step_report_t
@@ -237,6 +239,12 @@ contains
           c%status_begin(k) = sc%hist%status(pos)
           c%internals(:, k) = sc%hist%internals(:, pos)
         else
+          ! A contact seen first with an overlap was missed while approaching:
+          ! the alert distance is shorter than what bodies travel in a step.
+          if (c%gap(k) < 0.0_wp .and. sc%step > 0) then
+            rep%late_contacts = rep%late_contacts + 1
+            rep%late_overlap = max(rep%late_overlap, -c%gap(k))
+          end if
           ! Interfaces present at the start of a simulation are glued (beta = 1);
           ! contacts made later start without cohesion.
           c%internals(:, k) = [c%length(k), 0.0_wp, 0.0_wp, merge(1.0_wp, 0.0_wp, sc%step == 0), -99.0_wp]

@@ -13,7 +13,7 @@ The ten-line 2000-disk deposit::
     radii = gen.uniform_radii(2000, 0.004, 0.006, seed=1)
     disks = gen.deposit_disks(case, radii, width=0.5, material="STONE", seed=1)
     gen.box_walls(case, 0.0, 0.5, 0.0, gen.top_of(case, disks) + 0.01, 0.01, "TDURx")
-    gen.add_granular_laws(case, fric_grains=0.3, fric_walls=0.5, alert=0.1 * radii.min())
+    gen.add_granular_laws(case, fric_grains=0.3, fric_walls=0.5, alert=0.5 * radii.max())
     case.run.set(time_step=1e-3, number_of_steps=1000, output_vtk_every=10)
     case.write("deposit_2000")
 """
@@ -352,7 +352,9 @@ def deposit_case(n=2000, seed=1, rmin=None, rmax=None, width=None, fric_grains=0
     top = top_of(case, disks)
     box_walls(case, 0.0, width, 0.0, top + 4.0 * rmax, 0.5 * rmax + 0.005, "TDURx", "WALLx")
     if alert is None:
-        alert = 0.25 * rmin
+        # A pair must be seen before it touches: the alert distance must exceed
+        # what a disk travels in one step at its impact speed sqrt(2 g top).
+        alert = max(0.25 * rmin, 1.2 * math.sqrt(2.0 * 9.81 * top) * time_step)
     add_granular_laws(case, fric_grains, fric_walls, alert)
     nsteps = int(round(duration / time_step))
     vtk = output_vtk_every if output_vtk_every is not None else max(1, nsteps // 100)

@@ -30,7 +30,7 @@ def test_ten_line_deposit_of_2000_disks(tmp_path):
     radii = gen.uniform_radii(2000, 0.004, 0.006, seed=1)
     disks = gen.deposit_disks(case, radii, width=0.5, material="STONE", seed=1)
     gen.box_walls(case, 0.0, 0.5, 0.0, gen.top_of(case, disks) + 0.01, 0.01, "TDURx")
-    gen.add_granular_laws(case, fric_grains=0.3, fric_walls=0.5, alert=0.1 * radii.min())
+    gen.add_granular_laws(case, fric_grains=0.3, fric_walls=0.5, alert=0.5 * radii.max())
     case.run.set(time_step=1e-3, number_of_steps=1000, output_vtk_every=10)
     case.write(tmp_path / "deposit_2000")
     assert time.perf_counter() - t0 < 5.0
