@@ -633,7 +633,7 @@ def summary(run):
         "balance error max [J/m]": bal,
         "balance error / work": (bal / wmax) if bal is not None and wmax else None,
         "max overlap [m]": mx("max_overlap"),
-        "wall time [s]": last("wall_time"),
+        "wall time [s]": (float(np.sum(s["step_time"])) if "step_time" in s else last("wall_time")),
     }
     return out
 
@@ -760,7 +760,9 @@ def plot_solver(run, out):
                    ("mean_dvor", "|MeanDVoR| (tol. units)")):
         if k in s:
             y = np.abs(s[k])
-            y = np.where(y > 0, y, np.nan)
+            # Values at round-off level (first steps, bodies merely touching) would
+            # stretch the axis over tens of decades: show from 1e-16 up.
+            y = np.where(y > 1e-16, y, np.nan)
             ax.plot(t, y, lw=0.8, label=lab)
             plotted.append(y)
     if plotted and np.any(np.isfinite(np.concatenate(plotted))):
@@ -769,7 +771,12 @@ def plot_solver(run, out):
     ax.set_ylabel("residual [-]")
     ax.grid(True, alpha=0.3, which="both")
     ax = axes[2]
-    if "wall_time" in s:          # cumulative seconds since the start of the run
+    if "step_time" in s:          # seconds of each step (detection, solve, update)
+        ax.plot(t, s["step_time"] * 1e3, lw=0.8, color="C2", label="step")
+        if "solve_time" in s:
+            ax.plot(t, s["solve_time"] * 1e3, lw=0.8, color="C1", label="NLGS solve")
+        ax.legend(fontsize=8)
+    elif "wall_time" in s:        # older files: cumulative seconds since the start
         ax.plot(t, np.diff(s["wall_time"], prepend=0.0) * 1e3, lw=0.8, color="C2")
     ax.set_ylabel("wall time per step [ms]")
     ax.set_xlabel(tl)
@@ -1092,7 +1099,8 @@ def check_h5(path):
                     warns.append(f"/series/{k} missing")
             expected = ["contacts", "sweeps", "converged", "residual_natural_map", "quad_dv",
                         "maxm_dv", "kinetic_energy", "work_gravity", "work_driven", "dissipated",
-                        "balance_error", "mean_overlap", "max_overlap", "wall_time"]
+                        "balance_error", "mean_overlap", "max_overlap", "wall_time",
+                        "step_time", "solve_time"]
             absent = [k for k in expected if k not in g]
             if absent:
                 info.append("series not in the file: " + ", ".join(absent))
