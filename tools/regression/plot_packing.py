@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""Picture of a disk packing from a Fracas run: disks as circles, JONCx walls as
+rounded bars, and the force chains (segments between the centres of the two
+bodies of each loaded contact, width proportional to the normal force).
+
+    /usr/bin/python3 tools/regression/plot_packing.py RUN_DIR --case CASE_DIR -o out.png
+        [--snapshot -1] [--no-forces] [--title TEXT]
+"""
+
+import argparse
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import tagged  # noqa: E402
+
+
+def read_contactors(bodies_dat):
+    """Per body: list of (type, values) of its contactors; values are the reals
+    of columns 35-48 and 56-69 of the contactor line (radius; JONCx ax1, ax2)."""
+    out = []
+    cur = None
+    in_tacty = False
+    with open(bodies_dat, "r", errors="replace") as f:
+        for line in f:
+            line = line.rstrip("\r\n").replace("\t", " ")
+            if not line.strip() or line[0] in "!#":
+                continue
+            if line.startswith("$bdyty"):
+                cur = []
+                out.append(cur)
+                in_tacty = False
+            elif line.startswith("$tacty"):
+                in_tacty = True
+            elif line.startswith("$"):
+                in_tacty = False
+            elif in_tacty and cur is not None and line[1:6].strip() and line[1:6][0].isalpha():
+                vals = []
+                for a, b in ((34, 48), (55, 69)):
+                    s = line[a:b].strip().replace("D", "e").replace("d", "e")
+                    try:
+                        vals.append(float(s))
+                    except ValueError:
+                        pass
+                cur.append((line[1:6], vals))
+    return out
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("run_dir")
+    p.add_argument("--case", required=True)
+    p.add_argument("-o", "--output", required=True)
+    p.add_argument("--snapshot", type=int, default=-1, help="snapshot index (default: last)")
+    p.add_argument("--no-forces", action="store_true")
+    p.add_argument("--title")
+    p.add_argument("--dpi", type=int, default=150)
+    a = p.parse_args(argv)
+
+    import h5py
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import LineCollection, PatchCollection
+    from matplotlib.patches import Circle, FancyBboxPatch, Polygon
+
+    case = Path(a.case)
+    tact = read_contactors(case / "DATBOX" / "BODIES.DAT")
+    with h5py.File(tagged.find_h5(a.run_dir), "r") as f:
+        ref = f["bodies/reference"][:]
+        names = sorted(f["snapshots"])
+        s = f["snapshots"][names[a.snapshot]]
+        step, time = int(s.attrs["step"]), float(s.attrs["time"])
+        X = s["bodies/X"][:]
+        c = s["contacts"]
+        nc = int(c.attrs["count"])
+        cd = c["cd_body"][:] - 1 if nc else np.zeros(0, int)
+        an = c["an_body"][:] - 1 if nc else np.zeros(0, int)
+        rn = c["reaction"][:, 1] if nc else np.zeros(0)
+        pt = c["point"][:] if nc else np.zeros((0, 2))
+    if len(tact) != len(ref):
+        raise SystemExit("plot_packing.py: BODIES.DAT and fracas.h5 disagree on the number of bodies")
+    pos = ref + X
+    # X is the displacement from the reference (it includes DOF.INI rotations of the walls)
+
+    fig, ax = plt.subplots(figsize=(6.4, 7.2))
+    disks, walls = [], []
+    is_disk = np.zeros(len(tact), bool)
+    for i, cs in enumerate(tact):
+        for kind, vals in cs:
+            if kind == "DISKx":
+                disks.append(Circle((pos[i, 0], pos[i, 1]), vals[0]))
+                is_disk[i] = True
+            elif kind == "JONCx":
+                ax1, ax2 = vals[0], vals[1]
+                th = pos[i, 2]
+                ct, st = math.cos(th), math.sin(th)
+                corners = np.array([[-ax1, -ax2], [ax1, -ax2], [ax1, ax2], [-ax1, ax2]])
+                R = np.array([[ct, -st], [st, ct]])
+                walls.append(Polygon(corners @ R.T + pos[i, :2], closed=True))
+    ax.add_collection(PatchCollection(walls, facecolor="0.55", edgecolor="0.3", linewidth=0.5))
+    ax.add_collection(PatchCollection(disks, facecolor="#d9e6f2", edgecolor="#5b7fa6", linewidth=0.3))
+    if not a.no_forces and nc:
+        loaded = rn > 0
+        segs, widths = [], []
+        rmax = rn[loaded].max() if loaded.any() else 1.0
+        for k in np.flatnonzero(loaded):
+            i, j = cd[k], an[k]
+            p0 = pos[i, :2] if is_disk[i] else pt[k]
+            p1 = pos[j, :2] if is_disk[j] else pt[k]
+            segs.append([p0, p1])
+            widths.append(0.2 + 3.0 * rn[k] / rmax)
+        ax.add_collection(LineCollection(segs, linewidths=widths, colors="#b2182b",
+                                         capstyle="round"))
+    allx = np.concatenate([p.get_xy()[:, 0] for p in walls] + [pos[is_disk, 0]])
+    ally = np.concatenate([p.get_xy()[:, 1] for p in walls] + [pos[is_disk, 1]])
+    top = float(np.max(pos[is_disk, 1])) + 0.05 * (allx.max() - allx.min())
+    ax.set_xlim(allx.min(), allx.max())
+    ax.set_ylim(ally.min(), min(ally.max(), top))
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    title = a.title or f"{case.name}: step {step}, t = {time:.3f} s"
+    if not a.no_forces:
+        title += "\nforce chains: width ∝ normal force"
+    ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    Path(a.output).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(a.output, dpi=a.dpi)
+    print(f"plot_packing.py: wrote {a.output}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
