@@ -101,23 +101,13 @@ class Results:
             self.time = np.zeros(len(names))
             self.X = np.zeros((len(names), nb, 3))
             self.V = np.zeros((len(names), nb, 3))
-            self.contacts = []
             for i, name in enumerate(names):
                 g = f["snapshots"][name]
                 self.step[i] = int(g.attrs["step"])
                 self.time[i] = float(g.attrs["time"])
-                self.X[i] = g["bodies/X"][:]
-                self.V[i] = g["bodies/V"][:]
-                if contacts:
-                    c = g["contacts"]
-                    r = c["reaction"][:].reshape(-1, 2)
-                    self.contacts.append({
-                        "cd": c["cd_body"][:], "an": c["an_body"][:],
-                        "rt": r[:, 0], "rn": r[:, 1],
-                        "normal": c["normal"][:].reshape(-1, 2),
-                        "point": c["point"][:].reshape(-1, 2),
-                        "gap": c["gap"][:], "status": c["status"][:],
-                        "inter": c["inter"][:]})
+                g["bodies/X"].read_direct(self.X[i])
+                g["bodies/V"].read_direct(self.V[i])
+        self.contacts = _Contacts(path, names) if contacts else []
         if self.complete != 1:
             print(f"warning: {path} is not marked complete (unfinished run)")
 
@@ -154,6 +144,39 @@ class Results:
         """Sum of rn over the contacts between bodies a and b."""
         c = self.contacts[isnap]
         return float(np.sum(c["rn"][self.pair_mask(isnap, a, b)]))
+
+
+class _Contacts:
+    """Lazy list of the snapshots' contacts (read on first access, then cached):
+    contacts[i] is a dict of arrays cd, an, rt, rn, normal (nc, 2), point (nc, 2),
+    gap, status, inter."""
+
+    def __init__(self, path, names):
+        self.path, self.names, self.cache = path, names, {}
+
+    def __len__(self):
+        return len(self.names)
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(len(self)))]
+        i = range(len(self.names))[i]
+        if i not in self.cache:
+            import h5py
+            with h5py.File(self.path, "r") as f:
+                c = f["snapshots"][self.names[i]]["contacts"]
+                r = c["reaction"][:].reshape(-1, 2)
+                self.cache[i] = {
+                    "cd": c["cd_body"][:], "an": c["an_body"][:],
+                    "rt": r[:, 0], "rn": r[:, 1],
+                    "normal": c["normal"][:].reshape(-1, 2),
+                    "point": c["point"][:].reshape(-1, 2),
+                    "gap": c["gap"][:], "status": c["status"][:],
+                    "inter": c["inter"][:]}
+        return self.cache[i]
+
+    def __iter__(self):
+        return (self[i] for i in range(len(self)))
 
 
 class Checker:

@@ -50,16 +50,16 @@ def main():
         _, d_deck, _, _ = gen.incline_frame(k)          # incline surface as read from the deck
         a_deck = math.atan2(d_deck[1], d_deck[0])
         ck.close(f"{tag} contact normal angle (rad)", a_sol, a_deck, TOL_ANGLE)
-        ck.close(f"{tag} contacts per step (face on face)", np.mean(
-            [np.sum(res.pair_mask(i, blk, inc)) for i in range(len(res.time))]), 2, 0)
+        ck.close(f"{tag} contacts per step (face on face, every 10th step)", np.mean(
+            [np.sum(res.pair_mask(i, blk, inc)) for i in range(0, len(res.time), 10)]), 2, 0)
         d = pt.unit(a_deck)
         n = pt.unit(a_deck + 0.5 * math.pi)
         t = res.time
         X = res.X[:, blk - 1, :2]
         s = -(X @ d)                       # distance travelled down the slope
         rot = res.X[:, blk - 1, 2]
-        F = np.array([res.force_on(i, blk) for i in range(len(t))])
-        Fn, Ft = F @ n, F @ d              # normal force and friction (up the slope)
+        F = np.array([res.force_on(i, blk) for i in (0, len(t) - 1)])
+        Fn, Ft = F @ n, F @ d              # normal force and friction (up the slope), steps 1 and N
         if expected == "stick":
             ck.at_most(f"{tag} max |displacement| (m)", np.abs(X).max(), TOL_X)
             ck.at_most(f"{tag} max |v| (m/s), 2nd half", np.abs(res.V[len(t) // 2:, blk - 1, :]).max(), 1e-12)

@@ -27,7 +27,7 @@ TOL_PIVOT = 1.0e-5        # m: slip of the pivot corner while phi_ref <= PHI_CMP
 TOL_FINAL = 1.0e-3        # rad: the tipped box lies on its side (rotation pi/2)
 
 
-def pivot_ode(b, H, alpha, g, t_end, dt=1.0e-5):
+def pivot_ode(b, H, alpha, g, t_end, dt=1.0e-4):
     """Rotation phi(t) of a box pivoting about its lower downhill corner (RK4):
     I_P phi'' = m g (H/2 sin(phi + alpha) - b/2 cos(phi + alpha)), I_P = m (b^2 + H^2)/3."""
     ip = (b * b + H * H) / 3.0
