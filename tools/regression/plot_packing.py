@@ -4,7 +4,10 @@ rounded bars, and the force chains (segments between the centres of the two
 bodies of each loaded contact, width proportional to the normal force).
 
     /usr/bin/python3 tools/regression/plot_packing.py RUN_DIR --case CASE_DIR -o out.png
-        [--snapshot -1] [--no-forces] [--title TEXT]
+        [--snapshot -1] [--no-forces] [--title TEXT] [--series series.png]
+
+With ``--series`` a second figure shows the time series of the run: kinetic energy,
+contacts (listed and loaded), NLGS sweeps per step and solve time per step.
 """
 
 import argparse
@@ -58,6 +61,7 @@ def main(argv=None):
     p.add_argument("--no-forces", action="store_true")
     p.add_argument("--title")
     p.add_argument("--dpi", type=int, default=150)
+    p.add_argument("--series", metavar="PNG", help="also plot the time series into PNG")
     a = p.parse_args(argv)
 
     import h5py
@@ -131,7 +135,37 @@ def main(argv=None):
     Path(a.output).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(a.output, dpi=a.dpi)
     print(f"plot_packing.py: wrote {a.output}")
+    if a.series:
+        plot_series(a.run_dir, a.series, a.dpi)
     return 0
+
+
+def plot_series(run_dir, out, dpi=100):
+    import h5py
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    with h5py.File(tagged.find_h5(run_dir), "r") as f:
+        s = {k: f["series"][k][:] for k in f["series"]}
+    t = s["time"]
+    fig, axs = plt.subplots(3, 1, figsize=(6.4, 6.4), sharex=True)
+    axs[0].semilogy(t, np.maximum(s["kinetic_energy"], 1e-16), color="k")
+    axs[0].set_ylabel("kinetic energy")
+    axs[1].plot(t, s["contacts"], label="listed (gap < alert)")
+    if "active_contacts" in s:
+        axs[1].plot(t, s["active_contacts"], label="loaded (r != 0)")
+    axs[1].set_ylabel("contacts")
+    axs[1].legend(fontsize=8)
+    axs[2].semilogy(t, s["sweeps"], color="C2", label="sweeps per step")
+    axs[2].set_ylabel("NLGS sweeps", color="C2")
+    if "solve_time" in s:
+        ax2 = axs[2].twinx()
+        ax2.semilogy(t, np.maximum(s["solve_time"], 1e-6), color="C3", lw=0.6)
+        ax2.set_ylabel("solve time per step (s)", color="C3")
+    axs[2].set_xlabel("time (s)")
+    fig.tight_layout()
+    fig.savefig(out, dpi=dpi)
+    print(f"plot_packing.py: wrote {out}")
 
 
 if __name__ == "__main__":
