@@ -69,7 +69,7 @@ def main(argv=None):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.collections import LineCollection, PatchCollection
-    from matplotlib.patches import Circle, FancyBboxPatch, Polygon
+    from matplotlib.patches import Circle, Polygon
 
     case = Path(a.case)
     tact = read_contactors(case / "DATBOX" / "BODIES.DAT")

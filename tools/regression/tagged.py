@@ -72,8 +72,6 @@ machine only; it is never put into a reference.
 
 import argparse
 import hashlib
-import math
-import os
 import re
 import sys
 from pathlib import Path
@@ -212,11 +210,10 @@ def compute_tags(run_dir, case=None, with_hash=False):
             an = c["an_body"][:] - 1
             rt, rn = c["reaction"][:, 0], c["reaction"][:, 1]
             nrm = c["normal"][:]
-            gap = c["gap"][:]
             law = c["law"][:] - 1
         else:
             cd = an = law = np.zeros(0, int)
-            rt = rn = gap = np.zeros(0)
+            rt = rn = np.zeros(0)
             nrm = np.zeros((0, 2))
         mu_of_law = law_frictions(case_dir / "DATBOX" / "TACT_BEHAV.DAT",
                                   list(f["help/law"].asstr()[:]))
