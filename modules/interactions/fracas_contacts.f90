@@ -13,6 +13,7 @@ module fracas_contacts
 
   type :: contacts_t
     integer :: n = 0
+    logical :: with_cohesion = .false.       !< cohesive laws in the scene: internals and coh are allocated
     integer, allocatable :: inter(:)         !< interaction type id (fracas_ids)
     integer, allocatable :: cd(:), an(:)     !< candidate / antagonist contactor
     integer, allocatable :: cdb(:), anb(:)   !< their bodies
@@ -66,8 +67,13 @@ contains
               c%cdver(cap), c%anseg(cap), c%status(cap), &
               c%status_begin(cap), c%normal(2, cap), c%point(2, cap), c%gap(cap), c%lever(4, cap), &
               c%w(4, cap), c%shift(2, cap), c%mu(cap), c%active(cap), c%r(2, cap), c%u(2, cap), &
-              c%u_begin(2, cap), c%wi(6, cap), c%length(cap), c%internals(n_internals, cap), &
-              c%cohesive(cap), c%coh(12, cap))
+              c%u_begin(2, cap), c%wi(6, cap), c%length(cap), c%cohesive(cap))
+    ! Only a scene with cohesive laws pays for their per-contact state.
+    if (c%with_cohesion) then
+      allocate (c%internals(n_internals, cap), c%coh(12, cap))
+    else
+      allocate (c%internals(n_internals, 0), c%coh(12, 0))
+    end if
   contains
     subroutine free_all()
       deallocate (c%inter, c%cd, c%an, c%cdb, c%anb, c%law, c%sub, c%cdver, c%anseg, c%status, &
@@ -83,16 +89,19 @@ contains
   end subroutine contacts_clear
 
   !> Group records (cd, an, sub, inter, status, force) by candidate contactor.
+  !> internals (n_internals, n) only for scenes with cohesive laws.
   subroutine history_build(hist, ntactors, cd, an, sub, inter, status, force, internals)
     type(history_t), intent(out) :: hist
     integer, intent(in) :: ntactors, cd(:), an(:), sub(:), inter(:), status(:)
-    real(wp), intent(in) :: force(:, :), internals(:, :)
+    real(wp), intent(in) :: force(:, :)
+    real(wp), intent(in), optional :: internals(:, :)
     integer :: k, n, pos
     integer, allocatable :: fill(:)
     n = size(cd)
     hist%n = n
     allocate (hist%first(ntactors + 1), hist%inter(n), hist%an(n), hist%sub(n), hist%status(n), &
-              hist%force(2, n), hist%internals(n_internals, n))
+              hist%force(2, n))
+    if (present(internals)) allocate (hist%internals(n_internals, n))
     hist%first = 0
     do k = 1, n
       hist%first(cd(k) + 1) = hist%first(cd(k) + 1) + 1
@@ -110,7 +119,7 @@ contains
       hist%sub(pos) = sub(k)
       hist%status(pos) = status(k)
       hist%force(:, pos) = force(:, k)
-      hist%internals(:, pos) = internals(:, k)
+      if (present(internals)) hist%internals(:, pos) = internals(:, k)
     end do
   end subroutine history_build
 
@@ -122,8 +131,13 @@ contains
     real(wp), intent(in) :: h
     integer :: n
     n = c%n
-    call history_build(hist, ntactors, c%cd(1:n), c%an(1:n), c%sub(1:n), c%inter(1:n), c%status(1:n), &
-                       c%r(:, 1:n) / h, c%internals(:, 1:n))
+    if (c%with_cohesion) then
+      call history_build(hist, ntactors, c%cd(1:n), c%an(1:n), c%sub(1:n), c%inter(1:n), c%status(1:n), &
+                         c%r(:, 1:n) / h, c%internals(:, 1:n))
+    else
+      call history_build(hist, ntactors, c%cd(1:n), c%an(1:n), c%sub(1:n), c%inter(1:n), c%status(1:n), &
+                         c%r(:, 1:n) / h)
+    end if
   end subroutine history_from_contacts
 
   !> Index of the past contact (inter, cd, an, sub), 0 if there is none.

@@ -10,7 +10,7 @@ module fracas_scene
   use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
                           rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy, drive_value
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
-  use fracas_contact_laws, only: law_t, law_from_input
+  use fracas_contact_laws, only: law_t, law_from_input, law_czm
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
   use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts, &
                              n_internals
@@ -158,7 +158,12 @@ contains
         internals = reshape([internals, rec_internals], [n_internals, size(cd)])
       end associate
     end do
-    call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, internals)
+    sc%contacts%with_cohesion = any(sc%laws%kind == law_czm)
+    if (sc%contacts%with_cohesion) then
+      call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, internals)
+    else
+      call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force)
+    end if
 
     ns%check = deck%run%nlgs_check
     ns%tol = deck%run%nlgs_tolerance
@@ -237,7 +242,7 @@ contains
         if (pos > 0) then
           c%r(:, k) = sc%h * sc%hist%force(:, pos)
           c%status_begin(k) = sc%hist%status(pos)
-          c%internals(:, k) = sc%hist%internals(:, pos)
+          if (c%with_cohesion) c%internals(:, k) = sc%hist%internals(:, pos)
         else
           ! A contact seen first with an overlap was missed while approaching:
           ! the alert distance is shorter than what bodies travel in a step.
@@ -247,7 +252,8 @@ contains
           end if
           ! Interfaces present at the start of a simulation are glued (beta = 1);
           ! contacts made later start without cohesion.
-          c%internals(:, k) = [c%length(k), 0.0_wp, 0.0_wp, merge(1.0_wp, 0.0_wp, sc%step == 0), -99.0_wp]
+          if (c%with_cohesion) c%internals(:, k) = [c%length(k), 0.0_wp, 0.0_wp, &
+                                                    merge(1.0_wp, 0.0_wp, sc%step == 0), -99.0_wp]
         end if
       end do
       call nlgs_prepare(c, b, sc%laws, sc%h)
