@@ -1,0 +1,22 @@
+# Cohesive zone validation cases (doc/czm.md), included from CMakeLists.txt.
+# Each case folder holds gen.py (writes the committed DATBOX), README.md and check.py.
+#   validation.czm_<case>.run    fracas --overwrite --output <build dir>/czm_<case> <deck>
+#   validation.czm_<case>.check  check.py <build dir>/czm_<case> [args] (fixture of the run)
+# LABEL is quick (run + check < ~20 s) or long.
+function(fracas_czm_case name deck_dir check_script label)
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/czm_${name})
+  add_test(NAME validation.czm_${name}.run
+           COMMAND ${FRACAS_BIN} -q --overwrite --output ${out} ${deck_dir})
+  add_test(NAME validation.czm_${name}.check
+           COMMAND ${FRACAS_PYTHON} ${check_script} ${out} ${ARGN})
+  set_tests_properties(validation.czm_${name}.run PROPERTIES
+                       FIXTURES_SETUP validation_czm_${name} LABELS "${label};validation;czm")
+  set_tests_properties(validation.czm_${name}.check PROPERTIES
+                       FIXTURES_REQUIRED validation_czm_${name} LABELS "${label};validation;czm")
+endfunction()
+
+set(_czm ${CMAKE_CURRENT_SOURCE_DIR})
+# Mode I: traction-opening curve, peak and fracture energy of each law.
+foreach(law mac mp3 mal th expo)
+  fracas_czm_case(mode_I_${law} ${_czm}/czm_mode_I/${law} ${_czm}/czm_mode_I/check.py quick ${law})
+endforeach()

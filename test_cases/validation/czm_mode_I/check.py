@@ -1,0 +1,127 @@
+#!/usr/bin/python3
+"""Check a czm_mode_I run against the closed-form traction-opening curve of its law
+(README.md).
+
+usage: check.py RUN_DIR LAW     (RUN_DIR holds OUTBOX/fracas.h5; LAW in mac mp3 mal th expo)
+Prints one line per quantity and exits 1 if any check fails.
+"""
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.dont_write_bytecode = True
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[2]
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(ROOT / "tools" / "validation"))
+sys.path.insert(0, str(ROOT / "tools" / "czm"))
+import gen          # noqa: E402  (the deck parameters)
+import valtools     # noqa: E402
+from czmrun import CzmRun  # noqa: E402
+
+LOWER, UPPER = 1, 2         # body serial numbers (gen.py order)
+PEAK_TOL = 5e-3             # peak stress (brief: 0.5 %)
+ENERGY_TOL = 1e-2           # dissipated energy (brief: 1 %)
+CURVE_TOL = 1e-2            # max |sigma - sigma_closed(u)| / sigma_max
+
+
+def analyse(run, law):
+    """Interface traction, opening and beta per step (snapshots at every step)."""
+    p = run.pair(UPPER, LOWER)
+    sig = -p.total("rn") / gen.GLUED             # tensile traction (rn < 0 in tension)
+    un = p.mean("un")                            # normal jump seen by the law (internals)
+    beta = p.mean("beta")
+    return p, sig, un, beta
+
+
+def main():
+    if len(sys.argv) < 3 or sys.argv[2] not in gen.LAWS:
+        raise SystemExit(f"usage: check.py RUN_DIR LAW ({' '.join(gen.LAWS)})")
+    name = sys.argv[2]
+    law = gen.LAWS[name][1]
+    run = CzmRun(sys.argv[1], bodies=False)
+    ck = valtools.Checker(f"czm_mode_I/{name} ({gen.LAWS[name][0]})")
+    p, sig, un, beta = analyse(run, law)
+    smax, dpk, k, c = law.peak(1), law.d_peak(1), law.k, law.cn
+    G = law.fracture_energy(1)
+    n1, n2, _ = gen.schedule(name)
+    ns = len(sig)
+
+    ck.true("run complete, a snapshot per step", run.complete == 1 and ns == n1 + n2
+            and np.all(run.step == np.arange(1, ns + 1)), ours=f"{ns} snapshots")
+    ck.true("NLGS converged at every step", bool(np.all(run.series["converged"] == 1)))
+    ck.true("two glued points of L = 0.5 m in every step",
+            bool(np.all(p.present) and p.L.shape[1] == 2 and np.all(p.L == 0.5 * gen.GLUED)))
+    ck.at_most("points agree: max |un1 - un2| (m)", np.abs(p.un[:, 0] - p.un[:, 1]).max(), 1e-15 + 1e-9 * dpk)
+
+    # 1. the law: beta = closed form at the jump, the reported stress with the frozen beta
+    ck.at_most("max |beta - beta_closed(un)|", np.abs(beta - law.beta(un, 1)).max(), 1e-12,
+               note="internals vs closed form")
+    beta_prev = np.concatenate([[1.0], beta[:-1]])
+    ident = np.abs(sig - beta_prev ** k * c * un).max() / smax
+    ck.at_most("max |sigma - beta_prev^k c un| / sigma_max", ident, 1e-9,
+               note="reported force uses the frozen beta")
+    el = un <= dpk
+    ck.at_most("elastic branch max |sigma - c un| / sigma_max", np.abs(sig[el] - c * un[el]).max() / smax, 1e-9)
+
+    # 2. peak stress: sigma_k = sigma(u_{k-1}) u_k/u_{k-1}, so the lag adds at most
+    #    FINE (first damaging step, beta = 1) or GROWTH (plateau) of sigma_max (README)
+    i_pk = int(np.argmax(sig))
+    ck.rel(f"peak stress (Pa) = {law.family} closed form", sig[i_pk], smax, PEAK_TOL,
+           note=f"a-priori lag bound {gen.FINE:.1%} (fine), {gen.GROWTH:.2%} (geometric)")
+    if law.family != "TH":       # TH: the whole plateau [di, dp] is at the peak
+        ck.close("opening at peak / d_peak", un[i_pk] / dpk, 1.0, 2.0 * gen.FINE, note="two fine steps")
+
+    # 3. the curve: one step of lag, |sigma_k - sigma(u_k)| <= |sigma(u_{k-1}) - sigma(u_k)|
+    #    + sigma(u_{k-1}) (u_k - u_{k-1})/u_{k-1}, and below CURVE_TOL sigma_max overall
+    closed = law.sigma(un, 1)
+    dev = np.abs(sig - closed)
+    un_prev = np.concatenate([[0.0], un[:-1]])
+    s_prev = law.sigma(un_prev, 1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lag = np.abs(s_prev - closed) + np.where(un_prev > 0, s_prev * (un - un_prev) / un_prev, 0.0)
+    ck.at_most("max |sigma - sigma_closed(un)| / sigma_max", dev.max() / smax, CURVE_TOL)
+    ck.at_most("max excess over the one-step lag bound / sigma_max",
+               max(0.0, (dev - lag).max()) / smax, 1e-9)
+
+    # 4. energies (J per m of thickness)
+    s = run.series
+    d_end = un[-1]
+    dmg_ref = law.damage(d_end, 1) * gen.GLUED
+    ck.rel("damage_dissipated (J/m) = G L (1 - tail)", s["damage_dissipated"][-1], dmg_ref, ENERGY_TOL,
+           note=f"closed form at the final opening {d_end / dpk:.1f} d_peak")
+    ck.rel("damage_dissipated (J/m) = G L (nominal G)", s["damage_dissipated"][-1],
+           law.nominal_energy(1) * gen.GLUED, ENERGY_TOL)
+    ck.close("cohesive_energy at the end (J/m) = L/2 beta^k c un^2", s["cohesive_energy"][-1],
+             law.stored(d_end, 1) * gen.GLUED, 1e-9 * G)
+    ck.at_most("|balance_error| / (G L)", np.abs(s["balance_error"]).max() / (G * gen.GLUED), 1e-9,
+               note="work_supports = stored + dissipated")
+    # before the peak nothing is damaged, but the spring force c u_k over the step's
+    # displacement du_k exceeds the stored increment by (1/2) c du_k^2, and the jump
+    # u_k = gap + h v_k/2 moves by (h/2) dv when the opening velocity changes (README)
+    i_el = np.nonzero(un <= dpk)[0][-1]
+    du = np.diff(np.concatenate([[0.0], un[:i_el + 1]]))
+    spur = 0.5 * c * gen.GLUED * (np.sum(du * du) + np.sum(un[1:i_el + 1] * np.abs(np.diff(du))))
+    ck.at_most("damage_dissipated before the peak / (G L)", s["damage_dissipated"][i_el] / (G * gen.GLUED),
+               1.02 * spur / (G * gen.GLUED), note="(L/2) c (sum du^2 + sum u |d du|): O(h)")
+
+    # 5. damage start time, broken flags
+    first = int(np.argmax(beta < 1.0))
+    ck.close("TPSini (s) = end of the first damaging step", p.tpsini[-1, 0], run.time[first], 1e-12)
+    if law.family == "MAC":
+        ck.true("MAC: not broken (beta > 0 only decays as d^-2)", bool(np.all(p.broken[-1] == 0) and beta[-1] > 0))
+    else:
+        i_cut = int(np.argmax(un >= law.d_end(1)))
+        ck.true("broken = 1 from the cut-off opening on, 0 before",
+                bool(np.all(p.broken[i_cut:] == 1) and np.all(p.broken[:i_cut] == 0)
+                     and np.all(p.beta[i_cut:] == 0.0)),
+                ours=f"step {run.step[i_cut]}")
+    names = set(run.status_name(p.status[beta > 0]).ravel())
+    ck.true("statuses of the glued points are cohesive", names <= {"Cstck", "Cnctc", "Cslfw", "Cslbw"},
+            ours=",".join(sorted(names)))
+    return ck.finish()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""Write test_cases/validation/czm_mode_I/<law>/DATBOX for <law> in mac, mp3, mal, th, expo:
+two 1 m x 1 m rigid POLYG blocks glued face to face at y = 0.5 (glued length 1 m,
+two contact points of 0.5 m each); the lower block is fixed, the upper one is pulled
+straight up by a driven velocity (its rotation is driven to 0, its x is free), no gravity.
+
+The opening velocity (evolution file vy.dat) gives an opening of d_peak/250 per step up
+to 0.95 d_peak (elastic), d_peak/1000 per step up to 1.25 d_peak (the peak), then an
+opening growing by 1/400 of itself per step (geometric) until the end (20 d0 for MAC, 1.1 times full separation for the others): the one-step lag of
+beta then changes the stress by at most 0.25 % near the peak (README.md). The parameters below are read by check.py
+(import gen). Run once; the generated DATBOX folders are committed.
+"""
+import math
+import sys
+from pathlib import Path
+
+sys.dont_write_bytecode = True
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[2]
+sys.path.insert(0, str(ROOT / "tools" / "czm"))
+sys.path.insert(0, str(ROOT / "tools"))
+from czmlaws import Law  # noqa: E402
+
+DT = 1.0e-4            # time step (s); the blocks are driven, only the opening per step matters
+RHO = 2000.0           # density (kg/m^3), irrelevant (no free motion along the normal)
+MU = 0.5               # friction (irrelevant in pure opening)
+GLUED = 1.0            # glued length (m): face of the 1 m blocks
+ALERT = 0.01           # see-rule alert distance (m)
+ELASTIC = 4.0e-3       # opening per step / d_peak up to NEAR d_peak
+NEAR = 0.95            # d / d_peak where the fine phase starts
+FINE = 1.0e-3          # opening per step / d_peak from NEAR to SWITCH d_peak
+GROWTH = 1.0 / 400.0   # opening per step / opening afterwards
+SWITCH = 1.25          # d / d_peak where the velocity switches
+
+# name: (LMGC90 law name, Law)
+LAWS = {
+    "mac": ("IQS_MAC_CZM", Law.mac(cn=1.0e10, ct=1.0e11, b=0.0, w=40.0)),
+    "mp3": ("MP3_CZM", Law.mp3(cn=1.0e11, ct=1.0e11, smax=1.0e6, w=40.0)),
+    "mal": ("IQS_MAL_CZM", Law.mal(cn=1.0e11, ct=5.0e10, s1=1.0e6, s2=2.0e6, G1=40.0, G2=100.0)),
+    "th": ("IQS_TH_CZM", Law.th(cn=1.0e11, ct=5.0e10, s1=1.0e6, s2=2.0e6, G1=40.0, G2=100.0,
+                                dp1=2.0e-5, dp2=6.0e-5)),
+    "expo": ("IQS_EXPO_CZM", Law.expo(cn=1.0e11, ct=5.0e10, s1=1.0e6, s2=2.0e6, G1=40.0, G2=100.0,
+                                      eta=1.0e-4)),
+}
+
+
+def schedule(name):
+    """(n1, n2, table): steps of the uniform phases (elastic, then fine) and of the
+    geometric phase of the opening, and the velocity table (t, vy). In the geometric phase u(t) = u1 exp((t - t1)/tau),
+    tau = DT/GROWTH, so vy = u/tau."""
+    law = LAWS[name][1]
+    dpk = law.d_peak(1)
+    d_end = 20.0 * dpk if law.family == "MAC" else 1.1 * law.d_end(1)
+    ne = int(round(NEAR / ELASTIC))
+    nf = int(round((SWITCH - NEAR) / FINE))
+    n1 = ne + nf
+    n2 = int(math.ceil(math.log(d_end / (SWITCH * dpk)) / GROWTH))
+    ve, vf = ELASTIC * dpk / DT, FINE * dpk / DT
+    tau = DT / GROWTH
+    table = [[0.0, ve], [ne * DT, ve], [(ne + 1) * DT, vf], [n1 * DT, vf]]
+    table += [[(n1 + j) * DT, SWITCH * dpk / tau * math.exp(j * GROWTH)] for j in range(1, n2 + 11)]
+    return n1, n2, table
+
+
+def build(name):
+    from fracas_tools import Case
+    law_name, law = LAWS[name]
+    n1, n2, table = schedule(name)
+    case = Case(gravity=(0.0, 0.0))
+    case.add_material("STONE", density=RHO)
+    law.add_to(case, "czm01", law_name, MU)
+    case.add_see("POLYG", "BLEUx", "POLYG", "BLEUx", "czm01", ALERT)
+    lower = case.add_polygon([(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)], "STONE")
+    lower.fix()
+    upper = case.add_polygon([(-0.5, 0.5), (0.5, 0.5), (0.5, 1.5), (-0.5, 1.5)], "STONE")
+    upper.impose_evolution(2, "vlocy", "vy.dat", data=table)
+    upper.impose_velocity(3)
+    case.run.set(time_step=DT, number_of_steps=n1 + n2, theta=0.5, nlgs_check="Quad",
+                 nlgs_tolerance=1e-6, output_hdf5_every=1, output_dof_every=0,
+                 output_vtk_every=0, progress_every=0)
+    return case
+
+
+if __name__ == "__main__":
+    for name in (sys.argv[1:] or LAWS):
+        build(name).write(HERE / name)
+        print(f"wrote {HERE / name / 'DATBOX'}  steps {sum(schedule(name)[:2])}")
