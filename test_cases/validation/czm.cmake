@@ -20,3 +20,7 @@ set(_czm ${CMAKE_CURRENT_SOURCE_DIR})
 foreach(law mac mp3 mal th expo)
   fracas_czm_case(mode_I_${law} ${_czm}/czm_mode_I/${law} ${_czm}/czm_mode_I/check.py quick ${law})
 endforeach()
+# Mode II under a compressive preload: cohesive shear, then Coulomb friction mu p.
+foreach(law mac expo)
+  fracas_czm_case(mode_II_${law} ${_czm}/czm_mode_II/${law} ${_czm}/czm_mode_II/check.py quick ${law})
+endforeach()

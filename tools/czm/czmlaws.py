@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-__all__ = ["Law", "mac_rate_curve", "BETA_BROKEN"]
+__all__ = ["Law", "mac_rate_curve", "ramp_schedule", "BETA_BROKEN"]
 
 BETA_BROKEN = 1.0e-12
 
@@ -272,3 +272,21 @@ def mac_rate_curve(law, u_of_t, t_end, n=200000, mode=1):
         beta[i + 1] = b
     u = np.array([u_of_t(x) for x in t])
     return t, u, beta, beta ** 2 * c * u
+
+
+def ramp_schedule(d_peak, d_end, dt, elastic=4.0e-3, near=0.95, fine=1.0e-3, switch=1.25,
+                  growth=1.0 / 400.0):
+    """Driven jump velocity for a monotonic test: a jump increment of elastic*d_peak per
+    step up to near*d_peak, fine*d_peak per step up to switch*d_peak, then growing by
+    `growth` of itself per step (u = u1 exp((t - t1)/tau), tau = dt/growth) to d_end.
+    Returns (n1, n2, table): steps of the uniform phases and of the geometric phase, and
+    the (t, v) table of the evolution file (a few points past the end)."""
+    ne = int(round(near / elastic))
+    nf = int(round((switch - near) / fine))
+    n1 = ne + nf
+    n2 = int(math.ceil(math.log(d_end / (switch * d_peak)) / growth))
+    ve, vf = elastic * d_peak / dt, fine * d_peak / dt
+    tau = dt / growth
+    table = [[0.0, ve], [ne * dt, ve], [(ne + 1) * dt, vf], [n1 * dt, vf]]
+    table += [[(n1 + j) * dt, switch * d_peak / tau * math.exp(j * growth)] for j in range(1, n2 + 11)]
+    return n1, n2, table

@@ -10,7 +10,6 @@ opening growing by 1/400 of itself per step (geometric) until the end (20 d0 for
 beta then changes the stress by at most 0.25 % near the peak (README.md). The parameters below are read by check.py
 (import gen). Run once; the generated DATBOX folders are committed.
 """
-import math
 import sys
 from pathlib import Path
 
@@ -19,7 +18,7 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[2]
 sys.path.insert(0, str(ROOT / "tools" / "czm"))
 sys.path.insert(0, str(ROOT / "tools"))
-from czmlaws import Law  # noqa: E402
+from czmlaws import Law, ramp_schedule  # noqa: E402
 
 DT = 1.0e-4            # time step (s); the blocks are driven, only the opening per step matters
 RHO = 2000.0           # density (kg/m^3), irrelevant (no free motion along the normal)
@@ -51,15 +50,7 @@ def schedule(name):
     law = LAWS[name][1]
     dpk = law.d_peak(1)
     d_end = 20.0 * dpk if law.family == "MAC" else 1.1 * law.d_end(1)
-    ne = int(round(NEAR / ELASTIC))
-    nf = int(round((SWITCH - NEAR) / FINE))
-    n1 = ne + nf
-    n2 = int(math.ceil(math.log(d_end / (SWITCH * dpk)) / GROWTH))
-    ve, vf = ELASTIC * dpk / DT, FINE * dpk / DT
-    tau = DT / GROWTH
-    table = [[0.0, ve], [ne * DT, ve], [(ne + 1) * DT, vf], [n1 * DT, vf]]
-    table += [[(n1 + j) * DT, SWITCH * dpk / tau * math.exp(j * GROWTH)] for j in range(1, n2 + 11)]
-    return n1, n2, table
+    return ramp_schedule(dpk, d_end, DT, ELASTIC, NEAR, FINE, SWITCH, GROWTH)
 
 
 def build(name):
