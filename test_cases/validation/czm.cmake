@@ -24,3 +24,7 @@ endforeach()
 foreach(law mac expo)
   fracas_czm_case(mode_II_${law} ${_czm}/czm_mode_II/${law} ${_czm}/czm_mode_II/check.py quick ${law})
 endforeach()
+# Cyclic opening: secant unloading (beta frozen), damage resumed past the old maximum.
+foreach(law mac mp3)
+  fracas_czm_case(cyclic_${law} ${_czm}/czm_cyclic/${law} ${_czm}/czm_cyclic/check.py quick ${law})
+endforeach()
