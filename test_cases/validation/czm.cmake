@@ -28,3 +28,5 @@ endforeach()
 foreach(law mac mp3)
   fracas_czm_case(cyclic_${law} ${_czm}/czm_cyclic/${law} ${_czm}/czm_cyclic/check.py quick ${law})
 endforeach()
+# Rate dependence of the viscous MAC law (b > 0): peaks vs the integrated damage ODE.
+fracas_czm_case(rate ${_czm}/czm_rate ${_czm}/czm_rate/check.py quick)
