@@ -30,3 +30,5 @@ foreach(law mac mp3)
 endforeach()
 # Rate dependence of the viscous MAC law (b > 0): peaks vs the integrated damage ODE.
 fracas_czm_case(rate ${_czm}/czm_rate ${_czm}/czm_rate/check.py quick)
+# Energy audit: a glued block pushed until the glue breaks, then sliding with friction.
+fracas_czm_case(energy ${_czm}/czm_energy ${_czm}/czm_energy/check.py quick)
