@@ -58,6 +58,7 @@ class CzmRun:
             self.inertia = f["bodies/inertia"][:]
             self.ref = f["bodies/reference"][:]
             self.status_names = list(f["help/status"].asstr()[:])
+            self.law_names = list(f["help/law"].asstr()[:])
             names = sorted(f["snapshots"])
             nb = len(self.mass)
             ns = len(names)
@@ -77,7 +78,7 @@ class CzmRun:
                 nc = int(c.attrs["count"])
                 d = {"cd": c["cd_body"][:], "an": c["an_body"][:],
                      "reaction": c["reaction"][:].reshape(nc, 2),
-                     "status": c["status"][:],
+                     "status": c["status"][:], "law": c["law"][:],
                      "point": c["point"][:].reshape(nc, 2)}
                 if full:
                     d["gap"] = c["gap"][:]
