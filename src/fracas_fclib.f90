@@ -68,6 +68,9 @@ contains
           call fatal("--order expects stored, reversed or shuffled, got '"//argument(i)//"'")
       case ('--seed')
         s%seed = int_value()
+      case ('--accel')
+        s%accel = int_value()
+        if (s%accel < 0) call fatal('--accel must be >= 0')
       case ('--time-limit')
         s%time_limit = real_value()
       case ('--repeat')
@@ -132,7 +135,7 @@ contains
       end if
     end do
     if (.not. quiet) then
-      write (output_unit, '(a,i0,a,f0.6,a,a,es10.3,a,es10.3,a,es10.3)') 'fracas-fclib: '// &
+      write (output_unit, '(a,i0,a,es10.3,a,a,es10.3,a,es10.3,a,es10.3)') 'fracas-fclib: '// &
         trim(merge('converged     ', 'NOT converged ', best%converged))//' after ', best%sweeps, ' sweeps in ', &
         best%time, ' s', trim(merge(' (best of repeats)', '                  ', repeat > 1)) // &
         ': ||F||/||q|| = ', best%err_paper, ', ||F||/(1+||q||) = ', best%err_onepq, ', ||F|| = ', best%err_abs
@@ -237,6 +240,7 @@ contains
       '  --sweeps-per-check N sweeps between two convergence checks (default 1)', &
       '  --max-sweeps N       give up after N sweeps (default 100000)', &
       '  --relax W            relaxation factor in (0, 2) (default 1)', &
+      '  --accel M            Anderson acceleration of the sweeps, memory M (default 10; 0: plain NLGS)', &
       '  --order O            stored, reversed or shuffled (each block of sweeps; default stored)', &
       '  --seed S             seed of the shuffled order (default 1)', &
       '  --time-limit T       give up after T seconds of solve', &

@@ -216,8 +216,9 @@ contains
   !> |d| = 1, u_n = 0 and u_T = lambda d with lambda >= 0: rho follows from d
   !> in closed form and d solves one scalar equation on the unit circle
   !> (u_T x d = 0), by Newton from the previous sliding direction (warm start
-  !> in r) or the stick trial, with a bracketing search on the circle if
-  !> Newton fails. w is the block, wi = inverse_block_3d(w).
+  !> in r), then from the stick trial's, then by bisection of the sign changes
+  !> among 64 directions (nearest first) until a root with lambda >= 0 is
+  !> found. w is the block, wi = inverse_block_3d(w).
   !> status: st_noctc, st_stick, st_slifw (sliding, any direction), or
   !> -st_slifw when no sliding solution was found (r is then an approximation:
   !> sliding along the initial direction, or the projected stick trial).
@@ -225,11 +226,11 @@ contains
     real(wp), intent(in) :: qf(3), w(9), wi(9), mu
     real(wp), intent(inout) :: r(3)
     integer, intent(out) :: status
-    integer, parameter :: nsample = 24
+    integer, parameter :: nsample = 64
     real(wp), parameter :: cs = cos(2.0_wp * 3.14159265358979323846_wp / nsample), &
                            sn = sin(2.0_wp * 3.14159265358979323846_wp / nsample)
-    real(wp) :: qn, s1, s2, s3, d1, d2, e1, e2, rho, g, lam, dg, delta, nrm, gscale
-    real(wp) :: gs(0:nsample), ls(0:nsample), ds(2, 0:nsample), lo(2), hi(2), glo, dm(2)
+    real(wp) :: qn, s1, s2, s3, d1, d2, t1, t2, rho, g, lam, dg, nrm, gscale
+    real(wp) :: gs(0:nsample), ds(2, 0:nsample), lo(2), hi(2), glo, dm(2)
     logical :: ok, vs(0:nsample), found
     integer :: it, k, kk
     qn = qf(1)
@@ -253,51 +254,39 @@ contains
       status = merge(st_slifw, -st_slifw, w(1) > 0.0_wp)
       return
     end if
-    ! initial sliding direction: the previous one if r was sliding, else the stick trial's
+    gscale = abs(qf(2)) + abs(qf(3)) + abs(qn) * (abs(w(2)) + abs(w(3)) + mu * (abs(w(5)) + abs(w(6)) + &
+             abs(w(8)) + abs(w(9)))) / w(1)
+    ! the stick trial's direction (reversed)
+    nrm = sqrt(s2**2 + s3**2)
+    if (nrm > 0.0_wp) then
+      t1 = -s2 / nrm; t2 = -s3 / nrm
+    else
+      t1 = 1.0_wp; t2 = 0.0_wp
+    end if
+    ! Newton from the previous sliding direction if r was sliding, then from the stick trial's
+    found = .false.
     nrm = sqrt(r(2)**2 + r(3)**2)
     if (r(1) > 0.0_wp .and. nrm >= 0.999_wp * mu * r(1) .and. nrm > 0.0_wp) then
       d1 = -r(2) / nrm; d2 = -r(3) / nrm
-    else
-      nrm = sqrt(s2**2 + s3**2)
-      if (nrm > 0.0_wp) then
-        d1 = -s2 / nrm; d2 = -s3 / nrm
-      else
-        d1 = 1.0_wp; d2 = 0.0_wp
-      end if
+      call newton(d1, d2, found, rho)
     end if
-    gscale = abs(qf(2)) + abs(qf(3)) + abs(qn) * (abs(w(2)) + abs(w(3)) + mu * (abs(w(5)) + abs(w(6)) + &
-             abs(w(8)) + abs(w(9)))) / w(1)
-    ! Newton on the angle (a rotation by atan(delta) per step)
-    found = .false.
-    do it = 1, 30
-      call slide(d1, d2, ok, rho, g, lam, dg)
-      if (.not. ok) exit
-      if (dg == 0.0_wp) exit
-      delta = -g / dg
-      delta = max(-1.0_wp, min(1.0_wp, delta))
-      e1 = d1 - delta * d2
-      e2 = d2 + delta * d1
-      nrm = 1.0_wp / sqrt(e1**2 + e2**2)
-      d1 = e1 * nrm; d2 = e2 * nrm
-      if (abs(delta) <= 1.0e-12_wp .or. abs(g) <= 1.0e-15_wp * gscale) then
-        call slide(d1, d2, ok, rho, g, lam, dg)
-        found = ok .and. lam >= -1.0e-12_wp * gscale
-        exit
-      end if
-    end do
     if (.not. found) then
-      ! Sample the circle from the current direction; bisect the bracket
-      ! (sign change of g with lambda > 0) nearest to it.
-      ds(:, 0) = [d1, d2]
+      d1 = t1; d2 = t2
+      call newton(d1, d2, found, rho)
+    end if
+    if (.not. found) then
+      ! Sample the circle from the stick trial's direction; bisect the brackets
+      ! (sign changes of g) nearest first until one holds a root with lambda >= 0.
+      ds(:, 0) = [t1, t2]
       do k = 0, nsample
         if (k > 0) ds(:, k) = [cs * ds(1, k - 1) - sn * ds(2, k - 1), sn * ds(1, k - 1) + cs * ds(2, k - 1)]
-        call slide(ds(1, k), ds(2, k), vs(k), rho, gs(k), ls(k), dg)
+        call slide(ds(1, k), ds(2, k), vs(k), rho, gs(k), lam, dg)
       end do
       do kk = 0, nsample - 1
         ! nearest first: 0, nsample-1, 1, nsample-2, ...
         k = merge(kk / 2, nsample - 1 - kk / 2, mod(kk, 2) == 0)
         if (.not. (vs(k) .and. vs(k + 1))) cycle
-        if (gs(k) * gs(k + 1) > 0.0_wp .or. max(ls(k), ls(k + 1)) <= 0.0_wp) cycle
+        if (gs(k) * gs(k + 1) > 0.0_wp) cycle
         lo = ds(:, k); hi = ds(:, k + 1); glo = gs(k)
         dm = lo
         do it = 1, 60
@@ -328,6 +317,32 @@ contains
     end if
 
   contains
+
+    !> Newton on the angle from d (a rotation by atan(delta) per step); found
+    !> if it converges to a root with lambda >= 0 (d, rho then hold it).
+    pure subroutine newton(d1, d2, found, rho)
+      real(wp), intent(inout) :: d1, d2
+      logical, intent(out) :: found
+      real(wp), intent(out) :: rho
+      real(wp) :: e1, e2, delta, nrm2, g, lam, dg
+      logical :: ok
+      integer :: iter
+      found = .false.
+      do iter = 1, 30
+        call slide(d1, d2, ok, rho, g, lam, dg)
+        if (.not. ok .or. dg == 0.0_wp) return
+        delta = max(-1.0_wp, min(1.0_wp, -g / dg))
+        e1 = d1 - delta * d2
+        e2 = d2 + delta * d1
+        nrm2 = 1.0_wp / sqrt(e1**2 + e2**2)
+        d1 = e1 * nrm2; d2 = e2 * nrm2
+        if (abs(delta) <= 1.0e-12_wp .or. abs(g) <= 1.0e-15_wp * gscale) then
+          call slide(d1, d2, ok, rho, g, lam, dg)
+          found = ok .and. lam >= -1.0e-12_wp * gscale
+          return
+        end if
+      end do
+    end subroutine newton
 
     !> Sliding along d: rho from u_n = 0, g = d_perp . u_T, lam = d . u_T and dg/dtheta.
     pure subroutine slide(d1, d2, ok, rho, g, lam, dg)
