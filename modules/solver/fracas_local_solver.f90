@@ -278,8 +278,9 @@ contains
       ! Sample the circle from the stick trial's direction; bisect the brackets
       ! (sign changes of g) nearest first until one holds a root with lambda >= 0.
       ds(:, 0) = [t1, t2]
-      do k = 0, nsample
-        if (k > 0) ds(:, k) = [cs * ds(1, k - 1) - sn * ds(2, k - 1), sn * ds(1, k - 1) + cs * ds(2, k - 1)]
+      call slide(t1, t2, vs(0), rho, gs(0), lam, dg)
+      do k = 1, nsample
+        ds(:, k) = [cs * ds(1, k - 1) - sn * ds(2, k - 1), sn * ds(1, k - 1) + cs * ds(2, k - 1)]
         call slide(ds(1, k), ds(2, k), vs(k), rho, gs(k), lam, dg)
       end do
       do kk = 0, nsample - 1

@@ -450,7 +450,7 @@ contains
     fn = sqrt(fn)
     c = 0
     if (aa%have_prev) then
-      if (fn > aa%restart * aa%fmin) then
+      if (fn > aa%fmin .and. fn / aa%restart > aa%fmin) then
         ! the sweep change grew: forget the history
         aa%k = 0; aa%next = 1; aa%fmin = fn
       else
