@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Write test_cases/validation/czm_cyclic/<law>/DATBOX for <law> in mac, mp3: the glued
 blocks of czm_mode_I opened and closed cyclically by a driven velocity +-v (evolution
-file vy.dat): the opening goes 0 -> 2 -> 0.5 -> 3 -> 1 -> 5 d_peak, d_peak/400 per step.
+file vy.dat): the opening goes 0 -> 2 -> 0.5 -> 3 -> 1 -> 4 d_peak, d_peak/300 per step.
 Unloading must follow the secant (beta frozen), reloading must resume damage where it
 stopped (README.md). The parameters below are read by check.py.
 """
@@ -20,8 +20,8 @@ RHO = 2000.0
 MU = 0.5
 GLUED = 1.0            # glued length (m)
 ALERT = 0.01
-STEP = 1.0 / 400.0     # opening per step / d_peak
-TURNS = [2.0, 0.5, 3.0, 1.0, 5.0]   # successive targets of the opening / d_peak
+STEP = 1.0 / 300.0     # opening per step / d_peak
+TURNS = [2.0, 0.5, 3.0, 1.0, 4.0]   # successive targets of the opening / d_peak
 
 LAWS = {
     "mac": ("IQS_MAC_CZM", Law.mac(cn=1.0e10, ct=1.0e11, b=0.0, w=40.0)),
