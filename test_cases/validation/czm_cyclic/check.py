@@ -76,10 +76,7 @@ def main():
                    abs(np.polyfit(un[seg], sig[seg], 1)[1]), 1e-6 * smax)
 
     # 3. reloading past the maximum: the monotonic curve again, one step of lag
-    above = ~below
-    above[0] = False
     closed = law.sigma(un, 1)
-    un_prev = np.concatenate([[0.0], un[:-1]])
     lagged = law.beta(prev_max, 1) ** k * c * un            # frozen beta of the step
     ck.at_most("reported sigma = beta_prev^k c u at every step / sigma_max",
                np.abs(sig - lagged).max() / smax, 1e-9)

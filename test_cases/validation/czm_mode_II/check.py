@@ -19,6 +19,8 @@ import gen          # noqa: E402  (the deck parameters)
 import valtools     # noqa: E402
 from czmrun import CzmRun  # noqa: E402
 
+_trapz = getattr(np, "trapezoid", None) or np.trapz   # numpy 2 renamed trapz
+
 LOWER, UPPER = 1, 2
 PEAK_TOL = 5e-3
 ENERGY_TOL = 1e-2
@@ -107,7 +109,7 @@ def main():
     ck.rel("damage_dissipated (J/m) = G2 L (nominal)", s["damage_dissipated"][-1],
            law.nominal_energy(MODE) * L.mean(), ENERGY_TOL)
     fine = np.linspace(0.0, ut[-1], 400001)
-    fr_ref = np.trapz(gen.MU * (1.0 - law.beta(fine, MODE)) * P, fine)
+    fr_ref = _trapz(gen.MU * (1.0 - law.beta(fine, MODE)) * P, fine)
     friction = s["dissipated"][-1] - s["damage_dissipated"][-1]
     ck.rel("friction work (J/m) = int mu (1 - beta) P du", friction, fr_ref, ENERGY_TOL)
     ck.at_most("|balance_error| / work_supports", np.abs(s["balance_error"]).max() / s["work_supports"][-1], 1e-9)

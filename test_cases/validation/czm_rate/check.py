@@ -22,6 +22,8 @@ import valtools     # noqa: E402
 from czmlaws import mac_rate_curve  # noqa: E402
 from czmrun import CzmRun  # noqa: E402
 
+_trapz = getattr(np, "trapezoid", None) or np.trapz   # numpy 2 renamed trapz
+
 PEAK_TOL = 5e-3
 ENERGY_TOL = 1e-2
 
@@ -46,7 +48,7 @@ def continuous(law, v, t_end):
     the opening at the peak, and the damage energy (work - stored) at t_end."""
     t, u, beta, sig = mac_rate_curve(law, lambda s: v * s, t_end, n=200000)
     i = int(np.argmax(sig))
-    work = np.trapz(sig, u)
+    work = _trapz(sig, u)
     stored = 0.5 * beta[-1] ** 2 * law.cn * u[-1] ** 2
     return sig[i], u[i], work - stored
 
