@@ -35,11 +35,13 @@ contains
     czm_beta_power = merge(2, 1, p%family == czm_mac)
   end function czm_beta_power
 
-  !> Cohesive energy stored per unit length: 1/2 beta^k (cn <un>+^2 + ct ut^2).
+  !> Energy per unit length in the cohesive springs: 1/2 beta^k (cn un^2 + ct ut^2).
+  !> The springs act in both directions (a compressed normal spring, possible
+  !> only between driven bodies, stores energy too); only opening drives damage.
   pure real(wp) function czm_stored_energy(p, beta, ut, un) result(e)
     type(czm_t), intent(in) :: p
     real(wp), intent(in) :: beta, ut, un
-    e = 0.5_wp * beta**czm_beta_power(p) * (p%cn * max(un, 0.0_wp)**2 + p%ct * ut**2)
+    e = 0.5_wp * beta**czm_beta_power(p) * (p%cn * un**2 + p%ct * ut**2)
   end function czm_stored_energy
 
   !> Beta at the end of a step of length h, from beta_old and the end-of-step

@@ -82,16 +82,19 @@ contains
   !> After convergence: the jumps, the damage beta and the time damage started
   !> of the cohesive contacts (stored in internals), their statuses relabelled
   !> cohesive, and the energies: stored cohesive energy at the end of the step,
-  !> work of the cohesive impulses -r_coh.(u + u_begin)/2 over the step.
-  subroutine nlgs_update_cohesive(c, laws, h, t_end, stored, coh_work)
+  !> work of the cohesive impulses -r_coh.(u + u_begin)/2 over the step, and the
+  !> energy released by damage: the drop of the stored energy when beta falls
+  !> at the end-of-step jumps (never negative).
+  subroutine nlgs_update_cohesive(c, laws, h, t_end, stored, coh_work, released)
     type(contacts_t), intent(inout) :: c
     type(law_t), intent(in) :: laws(:)
     real(wp), intent(in) :: h, t_end
-    real(wp), intent(out) :: stored, coh_work
+    real(wp), intent(out) :: stored, coh_work, released
     integer :: k
-    real(wp) :: ut, un, beta, rc(2)
+    real(wp) :: ut, un, beta, rc(2), e_new
     stored = 0.0_wp
     coh_work = 0.0_wp
+    released = 0.0_wp
     do k = 1, c%n
       if (laws(c%law(k))%kind /= law_czm) cycle
       associate (z => laws(c%law(k))%czm)
@@ -101,8 +104,10 @@ contains
         un = h * (c%u(2, k) + c%shift(2, k))
         beta = czm_beta_update(z, c%internals(4, k), ut, un, h)
         if (beta < 1.0_wp .and. c%internals(5, k) < 0.0_wp) c%internals(5, k) = t_end
+        e_new = c%length(k) * czm_stored_energy(z, beta, ut, un)
+        released = released + c%length(k) * czm_stored_energy(z, c%internals(4, k), ut, un) - e_new
         c%internals(1:4, k) = [c%length(k), ut, un, beta]
-        stored = stored + c%length(k) * czm_stored_energy(z, beta, ut, un)
+        stored = stored + e_new
         if (c%cohesive(k)) then
           select case (c%status(k))
           case (st_noctc)

@@ -52,6 +52,7 @@ module fracas_scene
     real(wp) :: work_supports = 0.0_wp, dissipated = 0.0_wp
     ! Cohesive zones: energy stored in the cohesive springs now (zero at the
     ! start: jumps start at 0), and the part of the dissipation due to damage.
+    ! coh_work (per step) is unused beyond the check that it closes the audit.
     real(wp) :: cohesive_energy = 0.0_wp, damage_dissipated = 0.0_wp
   end type scene_t
 
@@ -219,7 +220,7 @@ contains
     type(step_report_t), intent(out) :: rep
     integer :: k, pos, nover
     integer(i8) :: t0, t1, t2, rate
-    real(wp) :: margin, vmax, gap_end, dx(3), stored, coh_work, dissipated_all
+    real(wp) :: margin, vmax, gap_end, dx(3), stored, coh_work, released, dissipated_all
     call system_clock(t0, rate)
     associate (b => sc%bodies, c => sc%contacts)
       call rbdy2_begin_step(b, sc%time, sc%h, sc%theta)
@@ -261,7 +262,7 @@ contains
       call nlgs_solve(sc%solver, c, b, rep%nlgs)
       call system_clock(t2)
       rep%solve_seconds = real(t2 - t1, wp) / real(rate, wp)
-      call nlgs_update_cohesive(c, sc%laws, sc%h, sc%time + sc%h, stored, coh_work)
+      call nlgs_update_cohesive(c, sc%laws, sc%h, sc%time + sc%h, stored, coh_work, released)
 
       ! Energy audit of the step (before the begin state is overwritten).
       do k = 1, b%n
@@ -292,9 +293,11 @@ contains
       end do
       if (nover > 0) rep%mean_overlap = rep%mean_overlap / nover
       ! Contact work -r.(u + u_begin)/2 is dissipated, except what the cohesive
-      ! springs store; of the cohesive work, what is not stored went into damage.
+      ! springs store; of that dissipation, damage is the energy released when
+      ! beta drops (the rest is friction, impacts and the O(h) dissipation of
+      ! the implicit springs).
       sc%dissipated = sc%dissipated + dissipated_all - (stored - sc%cohesive_energy)
-      sc%damage_dissipated = sc%damage_dissipated + coh_work - (stored - sc%cohesive_energy)
+      sc%damage_dissipated = sc%damage_dissipated + released
       sc%cohesive_energy = stored
 
       call rbdy2_end_step(b, sc%h, sc%theta)

@@ -24,8 +24,8 @@ MU = 0.5               # mu m g = 1962 N/m
 LAW = Law.mp3(cn=1.0e7, ct=1.0e7, smax=6000.0, w=6.0)   # di = 6e-4 m, dk = 1.05e-3 m
 F0 = 8000.0            # final push (N/m): above the strength smax L = 6000 N/m
 T_RAMP = 0.3           # ramp time (s)
-DT = 2.5e-4            # time step (s): omega h = 0.04 for the glued block (omega = sqrt(ct L/m))
-STEPS = 2000           # 0.5 s
+DT = 1.25e-4           # time step (s): omega h = 0.02 for the glued block (omega = sqrt(ct L/m))
+STEPS = 4000           # 0.5 s
 ALERT = 0.01
 
 
