@@ -5,8 +5,8 @@ deck's geometry (DATBOX), for doc/validation_polygons.md (doc/img/poly_*.png).
     plot_polygons.py wall  CASE_DIR RUN_DIR OUT.png    # masonry_wall demo, 4 times
     plot_polygons.py arch  CASE_DIR RUN_DIR OUT.png    # arch demo, 3 times + forces
     plot_polygons.py heyman CASE_DIR RUN_DIR OUT.png   # arch_heyman: stand vs collapse
-    plot_polygons.py all [BUILD_DIR]                   # the three, from the ctest run
-                                                       # folders or fresh runs in /tmp
+    plot_polygons.py all                               # runs the three decks into /tmp
+                                                       # and redraws doc/img/poly_*.png
 Needs numpy, h5py, matplotlib (the system /usr/bin/python3).
 """
 import math
@@ -152,15 +152,12 @@ def plot_heyman(case_dir, run_dir, out):
 def main():
     if len(sys.argv) >= 2 and sys.argv[1] == "all":
         root = pt.repo_root()
-        build = Path(sys.argv[2]) if len(sys.argv) > 2 else None
         img = root / "doc" / "img"
         jobs = [("wall", root / "test_cases/examples/masonry_wall", "poly_wall.png"),
                 ("arch", root / "test_cases/examples/arch", "poly_arch.png"),
                 ("heyman", root / "test_cases/validation/arch_heyman", "poly_arch_heyman.png")]
         for kind, case_dir, name in jobs:
             run = Path("/tmp") / f"poly_plot_{kind}"
-            if build is not None:
-                run = build
             fracas = root / "build" / "release" / "bin" / "fracas"
             subprocess.run([str(fracas), "-q", "--overwrite", "--output", str(run), str(case_dir)], check=True)
             {"wall": plot_wall, "arch": plot_arch, "heyman": plot_heyman}[kind](case_dir, run, img / name)
