@@ -7,7 +7,7 @@ module fracas_contacts
   implicit none
   private
   public :: contacts_t, history_t, contacts_reserve, contacts_clear, history_from_contacts, &
-            history_find, history_build, n_internals
+            history_find, history_build, history_knows_pair, n_internals
 
   integer, parameter :: n_internals = 5   !< L, ut, un, beta, TPSini (2D cohesive laws)
 
@@ -139,6 +139,25 @@ contains
                          c%r(:, 1:n) / h)
     end if
   end subroutine history_from_contacts
+
+  !> True if contactors a and b were in contact at the previous step, in either
+  !> role and at any point of the pair.
+  pure logical function history_knows_pair(hist, a, b) result(known)
+    type(history_t), intent(in) :: hist
+    integer, intent(in) :: a, b
+    known = has(a, b) .or. has(b, a)
+  contains
+    pure logical function has(cd, an)
+      integer, intent(in) :: cd, an
+      integer :: k
+      has = .false.
+      if (.not. allocated(hist%first)) return
+      if (cd + 1 > size(hist%first)) return
+      do k = hist%first(cd), hist%first(cd + 1) - 1
+        if (hist%an(k) == an) has = .true.
+      end do
+    end function has
+  end function history_knows_pair
 
   !> Index of the past contact (inter, cd, an, sub), 0 if there is none.
   pure integer function history_find(hist, inter, cd, an, sub) result(pos)

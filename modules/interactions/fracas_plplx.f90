@@ -43,8 +43,10 @@ contains
     end if
     call max_separation(b, a, sep_b, ib)
     if (sep_b > alert) return
+    ! A separating face always wins over a non-separating one (else a separated
+    ! pair would be clipped onto a face it crosses and report an overlap).
     tol = 1.0e-3_wp * min(size_of(a), size_of(b))
-    if (sep_b > sep_a + tol) then
+    if (sep_b > sep_a + tol .or. (sep_b > 0.0_wp .and. sep_a <= 0.0_wp)) then
       call clip(b, a, ib, alert, res)
       res%ref_is_a = .false.
     else
@@ -135,15 +137,55 @@ contains
         q = merge(p0, p1, k == 1)
         if (sq < 0.0_wp .or. sq > len) cycle
       end if
-      if (k == 2 .and. res%n == 1) then
-        if (norm2(q - (res%point(:, 1) + 0.5_wp * res%gap(1) * nr)) <= 1.0e-12_wp * len) cycle
-      end if
       g = dot_product(q - r0, nr)
       if (g > alert) cycle
+      ! Two points closer than 1e-3 of the face carry no moment between them and
+      ! make a singular pair of constraints: keep the one with the smaller gap.
+      if (k == 2 .and. res%n == 1) then
+        if (abs(dot_product(q - res%point(:, 1), tr)) <= 1.0e-3_wp * len) then
+          if (g < res%gap(1)) then
+            res%gap(1) = g
+            res%point(:, 1) = q - 0.5_wp * g * nr
+            res%cdver(1) = v1
+          end if
+          cycle
+        end if
+      end if
       res%n = res%n + 1
       res%gap(res%n) = g
       res%point(:, res%n) = q - 0.5_wp * g * nr
       res%cdver(res%n) = merge(v0, v1, k == 1)
     end do
+    if (res%n == 0) call corner_to_corner(ref, inc, r0, r1, nr, alert, res)
   end subroutine clip
+
+  !> The facing edge lies beyond the end of the reference face (corners
+  !> approaching): one contact at the incident vertex nearest to the face, with
+  !> the face normal and the true clearance as gap, so the pair is seen before
+  !> it overlaps.
+  pure subroutine corner_to_corner(ref, inc, r0, r1, nr, alert, res)
+    real(wp), intent(in) :: ref(:, :), inc(:, :), r0(2), r1(2), nr(2), alert
+    type(polygon_contact_t), intent(inout) :: res
+    real(wp) :: e(2), t, d(2), dist, best, q(2), foot(2)
+    integer :: j, jbest
+    best = huge(1.0_wp)
+    jbest = 1
+    e = r1 - r0
+    do j = 1, size(inc, 2)
+      t = max(0.0_wp, min(1.0_wp, dot_product(inc(:, j) - r0, e) / dot_product(e, e)))
+      d = inc(:, j) - (r0 + t * e)
+      dist = norm2(d)
+      if (dist < best) then
+        best = dist
+        jbest = j
+        foot = r0 + t * e
+      end if
+    end do
+    if (best > alert .or. size(ref, 2) < 3) return
+    q = inc(:, jbest)
+    res%n = 1
+    res%gap(1) = sign(best, dot_product(q - foot, nr))
+    res%point(:, 1) = 0.5_wp * (q + foot)
+    res%cdver(1) = jbest
+  end subroutine corner_to_corner
 end module fracas_plplx

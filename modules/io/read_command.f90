@@ -163,7 +163,7 @@ contains
     case ('nlgs_check')
       s = 'one of Quad, Maxm, QM/16'
     case ('nlgs_order')
-      s = 'one of stored, reversed, shuffled'
+      s = 'one of stored, reversed, shuffled, colored'
     case default
       s = 'an integer >= 0'
     end select
@@ -212,7 +212,7 @@ contains
       run%nlgs_max_checks = int_min(1)
     case ('nlgs_order')
       select case (lv)
-      case ('stored', 'reversed', 'shuffled')
+      case ('stored', 'reversed', 'shuffled', 'colored')
         run%nlgs_order = lv
       case default
         call bad()

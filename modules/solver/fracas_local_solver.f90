@@ -5,7 +5,11 @@ module fracas_local_solver
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw
   implicit none
   private
-  public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d
+  public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d, gs_sweep_2d_packed
+  public :: pk_size
+
+  !> Doubles per contact record of gs_sweep_2d_packed.
+  integer, parameter :: pk_size = 20
   public :: coulomb_3d, inverse_block_3d, natural_map_3d
 
 contains
@@ -176,6 +180,176 @@ contains
       v(3, o) = v(3, o) - inv_mass(3, o) * (drt * l3 + drn * l4)
     end do
   end subroutine gs_sweep_2d
+
+  !> The scene's NLGS sweep on packed data: the same arithmetic, in the same order,
+  !> as gs_sweep_2d (so the iterates are bit-identical), with the memory layout of
+  !> the hot loop changed:
+  !>   cr(pk_size, n) one record per contact, in sweep order (only the contacts the
+  !>     law leaves active): 1:2 n, 3:6 lever arms, 7:10 W (tt, tn, nt, nn),
+  !>     11:16 inverse_block of the W the local solver uses, 17:18 law shift, 19 mu;
+  !>   cb(2, n) the two bodies as indices in bv; icoh(n) the column of coh of a
+  !>     cohesive contact (0: none; see gs_sweep_2d for coh), any_coh: some is;
+  !>   bv(6, *) one record per body: v (3) and the inverse mass (3);
+  !>   r(2, n), status(n) in sweep order.
+  !> Statuses are written, and the norm sums accumulated, only in check sweeps
+  !> (the last sweep of a solve is always one). Sweeps without check and without
+  !> cohesive contacts run a lean loop (sweep_plain, the local solver inlined).
+  subroutine gs_sweep_2d_packed(n, cb, cr, icoh, any_coh, coh, r, status, bv, relax, check, sums, maxes)
+    integer, intent(in) :: n
+    integer, intent(in) :: cb(2, n), icoh(n)
+    real(wp), intent(in) :: cr(pk_size, n)
+    logical, intent(in) :: any_coh
+    real(wp), intent(in), contiguous :: coh(:, :)
+    real(wp), intent(inout) :: r(2, n), bv(6, *)
+    integer, intent(inout) :: status(n)
+    real(wp), intent(in) :: relax
+    logical, intent(in) :: check
+    real(wp), intent(out) :: sums(6), maxes(2)
+    if (check .or. any_coh) then
+      call sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes)
+    else
+      sums = 0.0_wp
+      maxes = 0.0_wp
+      call sweep_plain(n, cb, cr, r, bv, relax)
+    end if
+  end subroutine gs_sweep_2d_packed
+
+  !> The hot loop: no cohesive contact, no statuses, no norm sums.
+  subroutine sweep_plain(n, cb, cr, r, bv, relax)
+    integer, intent(in) :: n
+    integer, intent(in) :: cb(2, n)
+    real(wp), intent(in) :: cr(pk_size, n)
+    real(wp), intent(inout) :: r(2, n), bv(6, *)
+    real(wp), intent(in) :: relax
+    integer :: k, a, o
+    real(wp) :: n1, n2, dvx, dvy, ut, un, rt0, rn0, rt, rn, uft, ufn, drt, drn, px, py, m, pt, pn, va3, vo3
+    do k = 1, n
+      a = cb(1, k); o = cb(2, k)
+      n1 = cr(1, k); n2 = cr(2, k)
+      va3 = bv(3, a); vo3 = bv(3, o)
+      dvx = bv(1, a) - bv(1, o)
+      dvy = bv(2, a) - bv(2, o)
+      ut = dvx * n2 - dvy * n1 + va3 * cr(3, k) - vo3 * cr(5, k)
+      un = dvx * n1 + dvy * n2 + va3 * cr(4, k) - vo3 * cr(6, k)
+      rt0 = r(1, k); rn0 = r(2, k)
+      uft = ut - (cr(7, k) * rt0 + cr(8, k) * rn0) + cr(17, k)
+      ufn = un - (cr(9, k) * rt0 + cr(10, k) * rn0) + cr(18, k)
+      ! coulomb_2d_inv inlined (branches: they are well predicted, and cheaper
+      ! here than selecting the four cases with merge)
+      if (ufn >= 0.0_wp) then
+        rt = 0.0_wp; rn = 0.0_wp
+      else
+        m = cr(19, k)
+        pt = -(cr(11, k) * uft + cr(12, k) * ufn)
+        pn = -(cr(13, k) * uft + cr(14, k) * ufn)
+        if (pt + m * pn < 0.0_wp) then
+          rn = -ufn * cr(15, k)
+          rt = -m * rn
+        else if (pt - m * pn > 0.0_wp) then
+          rn = -ufn * cr(16, k)
+          rt = m * rn
+        else
+          rt = pt; rn = pn
+        end if
+      end if
+      if (relax /= 1.0_wp) then
+        rt = relax * rt + (1.0_wp - relax) * rt0
+        rn = relax * rn + (1.0_wp - relax) * rn0
+      end if
+      r(1, k) = rt; r(2, k) = rn
+      drt = rt - rt0; drn = rn - rn0
+      if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
+      px = drt * n2 + drn * n1
+      py = -drt * n1 + drn * n2
+      bv(1, a) = bv(1, a) + bv(4, a) * px
+      bv(2, a) = bv(2, a) + bv(5, a) * py
+      bv(3, a) = va3 + bv(6, a) * (drt * cr(3, k) + drn * cr(4, k))
+      bv(1, o) = bv(1, o) - bv(4, o) * px
+      bv(2, o) = bv(2, o) - bv(5, o) * py
+      bv(3, o) = bv(3, o) - bv(6, o) * (drt * cr(5, k) + drn * cr(6, k))
+    end do
+  end subroutine sweep_plain
+
+  !> Any sweep: cohesive contacts, and with check the statuses and LMGC90's norm
+  !> sums (see gs_sweep_2d). gs_sweep_2d's loop without its indirections.
+  subroutine sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes)
+    integer, intent(in) :: n
+    integer, intent(in) :: cb(2, n), icoh(n)
+    real(wp), intent(in) :: cr(pk_size, n)
+    real(wp), intent(in), contiguous :: coh(:, :)
+    real(wp), intent(inout) :: r(2, n), bv(6, *)
+    integer, intent(inout) :: status(n)
+    real(wp), intent(in) :: relax
+    logical, intent(in) :: check
+    real(wp), intent(out) :: sums(6), maxes(2)
+    integer :: k, a, o, j, st
+    real(wp) :: n1, n2, wtt, wtn, wnt, wnn, dvx, dvy, ut, un, rt0, rn0, rt, rn, uft, ufn, drt, drn, px, py
+    real(wp) :: dut, dun, du2, rbt, rbn, rb2, xt, xn, rct, rcn
+    sums = 0.0_wp
+    maxes = 0.0_wp
+    do k = 1, n
+      a = cb(1, k); o = cb(2, k)
+      n1 = cr(1, k); n2 = cr(2, k)
+      wtt = cr(7, k); wtn = cr(8, k); wnt = cr(9, k); wnn = cr(10, k)
+      dvx = bv(1, a) - bv(1, o)
+      dvy = bv(2, a) - bv(2, o)
+      ut = dvx * n2 - dvy * n1 + bv(3, a) * cr(3, k) - bv(3, o) * cr(5, k)
+      un = dvx * n1 + dvy * n2 + bv(3, a) * cr(4, k) - bv(3, o) * cr(6, k)
+      rt0 = r(1, k); rn0 = r(2, k)
+      uft = ut - (wtt * rt0 + wtn * rn0) + cr(17, k)
+      ufn = un - (wnt * rt0 + wnn * rn0) + cr(18, k)
+      j = icoh(k)
+      if (j /= 0) then
+        xt = uft + wtt * coh(9, j) + wtn * coh(10, j)
+        xn = ufn + wnt * coh(9, j) + wnn * coh(10, j)
+        uft = coh(1, j) * xt + coh(2, j) * xn
+        ufn = coh(3, j) * xt + coh(4, j) * xn
+        call coulomb_2d_inv(uft, ufn, cr(11:16, k), cr(19, k), rct, rcn, st)
+        xt = uft + coh(5, j) * rct + coh(6, j) * rcn     ! u~ at the end of the step
+        xn = ufn + coh(7, j) * rct + coh(8, j) * rcn
+        rt = rct + coh(9, j) + coh(11, j) * xt
+        rn = rcn + coh(10, j) + coh(12, j) * xn
+      else
+        call coulomb_2d_inv(uft, ufn, cr(11:16, k), cr(19, k), rt, rn, st)
+      end if
+      if (check) then
+        status(k) = st
+        ! du = W (r_old - r_new), rbar = mean reaction (LMGC90's check quantities)
+        dut = wtt * (rt0 - rt) + wtn * (rn0 - rn)
+        dun = wnt * (rt0 - rt) + wnn * (rn0 - rn)
+        rbt = 0.5_wp * (rt0 + rt); rbn = 0.5_wp * (rn0 + rn)
+        if (rbt /= 0.0_wp .or. rbn /= 0.0_wp) then
+          du2 = dut**2 + dun**2
+          rb2 = rbt**2 + rbn**2
+          sums(1) = sums(1) + du2
+          sums(2) = sums(2) + du2 * rb2
+          sums(3) = sums(3) + rbt * dut + rbn * dun
+          sums(4) = sums(4) + 0.5_wp * ((wtt * rt0 + wtn * rn0) * rt0 + (wnt * rt0 + wnn * rn0) * rn0 + &
+                                        (wtt * rt + wtn * rn) * rt + (wnt * rt + wnn * rn) * rn)
+          sums(5) = sums(5) + 0.5_wp * ((wtt * rt0 + wtn * rn0)**2 + (wnt * rt0 + wnn * rn0)**2 + &
+                                        (wtt * rt + wtn * rn)**2 + (wnt * rt + wnn * rn)**2)
+          sums(6) = sums(6) + 1.0_wp
+          maxes(1) = max(maxes(1), du2)
+          maxes(2) = max(maxes(2), du2 * rb2)
+        end if
+      end if
+      if (relax /= 1.0_wp) then
+        rt = relax * rt + (1.0_wp - relax) * rt0
+        rn = relax * rn + (1.0_wp - relax) * rn0
+      end if
+      r(1, k) = rt; r(2, k) = rn
+      drt = rt - rt0; drn = rn - rn0
+      if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
+      px = drt * n2 + drn * n1
+      py = -drt * n1 + drn * n2
+      bv(1, a) = bv(1, a) + bv(4, a) * px
+      bv(2, a) = bv(2, a) + bv(5, a) * py
+      bv(3, a) = bv(3, a) + bv(6, a) * (drt * cr(3, k) + drn * cr(4, k))
+      bv(1, o) = bv(1, o) - bv(4, o) * px
+      bv(2, o) = bv(2, o) - bv(5, o) * py
+      bv(3, o) = bv(3, o) - bv(6, o) * (drt * cr(5, k) + drn * cr(6, k))
+    end do
+  end subroutine sweep_general
   ! ====================================================================== 3D
   ! 3D blocks are in FCLib order (n, t1, t2), stored column-major in w(9):
   ! w(1) = Wnn, w(2) = Wt1n, w(3) = Wt2n, w(4) = Wnt1, ..., w(9) = Wt2t2.

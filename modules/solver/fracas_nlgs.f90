@@ -4,14 +4,14 @@
 !> with LMGC90's normalised norms (Quad, Maxm, QM/16), computed inside the last
 !> sweep of each block, and after convergence with the FCLib natural map.
 module fracas_nlgs
-  use fracas_kinds, only: wp
+  use fracas_kinds, only: wp, i8
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw, st_cnctc, st_cstck, st_cslfw, st_cslbw
   use fracas_random, only: rng_t, rng_seed, rng_permute
   use fracas_rbdy2, only: rbdy2_t
   use fracas_contacts, only: contacts_t
   use fracas_contact_laws, only: law_t, law_shift, law_friction, law_czm
   use fracas_czm, only: czm_t, czm_beta_power, czm_beta_update, czm_stored_energy
-  use fracas_local_solver, only: gs_sweep_2d, natural_map_2d, inverse_block
+  use fracas_local_solver, only: gs_sweep_2d_packed, pk_size, natural_map_2d, inverse_block
   use fracas_errors, only: fatal
   implicit none
   private
@@ -38,14 +38,29 @@ module fracas_nlgs
     integer :: nactive = 0               !< contacts with a non-zero reaction
   end type nlgs_report_t
 
-  !> Solver state kept between steps (random stream, work arrays).
+  !> Solver state kept between steps (random stream, work arrays). The sweeps
+  !> run on packed copies (gs_sweep_2d_packed), built once per step (per block
+  !> of sweeps in shuffled order): the active contacts in sweep order, and the
+  !> bodies they touch, numbered in order of first appearance in the stored
+  !> (detection, i.e. cell) order so that neighbours are close in memory. The
+  !> numbering is internal: the bodies and contacts keep theirs.
   type :: nlgs_t
     type(nlgs_settings_t) :: s
     type(rng_t) :: rng
     integer, allocatable :: order(:)
     real(wp), allocatable :: qfree(:, :)   !< (2,n) free local velocity incl. law shift
-    integer, allocatable :: body(:, :)     !< (2,n) candidate, antagonist body (packed for the sweep)
-    real(wp), allocatable :: geo(:, :)     !< (6,n) normal and lever arms (packed for the sweep)
+    integer :: np = 0                      !< active contacts (packed)
+    logical :: any_coh = .false.           !< some packed contact is cohesive
+    integer, allocatable :: pidx(:)        !< (np) contact of each packed slot
+    real(wp), allocatable :: pc(:, :)      !< (pk_size,np) contact records
+    integer, allocatable :: pb(:, :)       !< (2,np) bodies, as slots of bv
+    integer, allocatable :: pcoh(:)        !< (np) column of c%coh (0: not cohesive)
+    real(wp), allocatable :: pr(:, :)      !< (2,np) impulses
+    integer, allocatable :: pst(:)         !< (np) statuses
+    integer :: nbp = 0                     !< bodies touched by active contacts
+    integer, allocatable :: bslot(:)       !< (nb) slot in bv of each body (0: none)
+    integer, allocatable :: blist(:)       !< (nbp) body of each slot
+    real(wp), allocatable :: bv(:, :)      !< (6,nbp) velocity and inverse mass
   end type nlgs_t
 
 contains
@@ -214,14 +229,22 @@ contains
     n = c%n
     report%sweeps = 0
     if (allocated(solver%order)) then
-      if (size(solver%order) < n) deallocate (solver%order, solver%qfree, solver%body, solver%geo)
+      if (size(solver%order) < n) deallocate (solver%order, solver%qfree, solver%pidx, solver%pc, solver%pb, &
+                                              solver%pcoh, solver%pr, solver%pst)
     end if
-    if (.not. allocated(solver%order)) allocate (solver%order(max(n, 16)), solver%qfree(2, max(n, 16)), &
-                                                 solver%body(2, max(n, 16)), solver%geo(6, max(n, 16)))
+    if (.not. allocated(solver%order)) then
+      k = max(n, 16)
+      allocate (solver%order(k), solver%qfree(2, k), solver%pidx(k), solver%pc(pk_size, k), solver%pb(2, k), &
+                solver%pcoh(k), solver%pr(2, k), solver%pst(k))
+    end if
+    if (allocated(solver%bslot)) then
+      if (size(solver%bslot) /= b%n) deallocate (solver%bslot, solver%blist, solver%bv)
+    end if
+    if (.not. allocated(solver%bslot)) then
+      allocate (solver%bslot(b%n), solver%blist(b%n), solver%bv(6, max(b%n, 1)))
+      solver%bslot = 0
+    end if
     do k = 1, n
-      solver%body(:, k) = [c%cdb(k), c%anb(k)]
-      solver%geo(1:2, k) = c%normal(:, k)
-      solver%geo(3:6, k) = c%lever(:, k)
       solver%qfree(:, k) = contact_velocity(c, k, b%v) + c%shift(:, k)
       if (c%active(k)) call inject(k, c%r(1, k), c%r(2, k))
     end do
@@ -234,13 +257,21 @@ contains
     select case (solver%s%order)
     case ('reversed')
       solver%order(1:n) = [(n + 1 - k, k=1, n)]
+    case ('colored')
+      call colour_order()
     case default
       solver%order(1:n) = [(k, k=1, n)]
     end select
+    call pack_bodies()
+    if (solver%s%order /= 'shuffled') call pack_contacts()
     report%converged = n == 0
     if (n > 0) then
       blocks: do iblock = 1, solver%s%max_checks
-        if (solver%s%order == 'shuffled') call rng_permute(solver%rng, solver%order(1:n))
+        if (solver%s%order == 'shuffled') then
+          if (iblock > 1) call unpack_contacts()
+          call rng_permute(solver%rng, solver%order(1:n))
+          call pack_contacts()
+        end if
         do isweep = 1, solver%s%sweeps_per_check
           call sweep(isweep == solver%s%sweeps_per_check)
           report%sweeps = report%sweeps + 1
@@ -248,7 +279,9 @@ contains
         call norms(report)
         if (report%converged) exit blocks
       end do blocks
+      call unpack_contacts()
     end if
+    call unpack_bodies()
     ! Final local velocities, statuses and the natural-map residual.
     fsum = 0.0_wp; qsum = 0.0_wp
     report%nactive = 0
@@ -286,13 +319,132 @@ contains
       b%v(3, o) = b%v(3, o) - b%inv_mass(3, o) * (dt * c%lever(3, k) + dn * c%lever(4, k))
     end subroutine inject
 
+    !> Coloured order: the active contacts in stored order, cut in blocks of
+    !> colour_block; in each block, greedy colours (two contacts sharing a body
+    !> never share one) and the contacts sorted by colour, stored order inside a
+    !> colour. Consecutive updates then touch different bodies, so the core can
+    !> overlap them, while a block stays in cache. A contact that finds no free
+    !> colour among 64 goes to the last. Inactive contacts follow (not swept).
+    subroutine colour_order()
+      integer, parameter :: colour_block = 256, ncol = 64
+      integer(i8), allocatable :: used(:)
+      integer :: blk(colour_block), col(colour_block), cnt(0:ncol), k, m, j, cc, nact
+      allocate (used(b%n))
+      used = 0_i8
+      nact = 0
+      m = 0
+      do k = 1, n
+        if (c%active(k)) then
+          m = m + 1
+          blk(m) = k
+        end if
+        if (m == colour_block .or. (k == n .and. m > 0)) then
+          cnt = 0
+          do j = 1, m
+            cc = min(ncol - 1, trailz(not(ior(used(c%cdb(blk(j))), used(c%anb(blk(j)))))))
+            col(j) = cc
+            cnt(cc + 1) = cnt(cc + 1) + 1
+            used(c%cdb(blk(j))) = ibset(used(c%cdb(blk(j))), cc)
+            used(c%anb(blk(j))) = ibset(used(c%anb(blk(j))), cc)
+          end do
+          do cc = 1, ncol
+            cnt(cc) = cnt(cc) + cnt(cc - 1)
+          end do
+          do j = 1, m
+            cnt(col(j)) = cnt(col(j)) + 1
+            solver%order(nact + cnt(col(j))) = blk(j)
+            used(c%cdb(blk(j))) = 0_i8
+            used(c%anb(blk(j))) = 0_i8
+          end do
+          nact = nact + m
+          m = 0
+        end if
+      end do
+      do k = 1, n
+        if (c%active(k)) cycle
+        nact = nact + 1
+        solver%order(nact) = k
+      end do
+    end subroutine colour_order
+
+    !> Slots in bv of the bodies of the active contacts, in order of first
+    !> appearance in the stored contact order; their velocities and inverse masses.
+    subroutine pack_bodies()
+      integer :: k, j, ib
+      solver%nbp = 0
+      do k = 1, n
+        if (.not. c%active(k)) cycle
+        do j = 1, 2
+          ib = merge(c%cdb(k), c%anb(k), j == 1)
+          if (solver%bslot(ib) /= 0) cycle
+          solver%nbp = solver%nbp + 1
+          solver%bslot(ib) = solver%nbp
+          solver%blist(solver%nbp) = ib
+        end do
+      end do
+      do j = 1, solver%nbp
+        ib = solver%blist(j)
+        solver%bv(1:3, j) = b%v(:, ib)
+        solver%bv(4:6, j) = b%inv_mass(:, ib)
+      end do
+    end subroutine pack_bodies
+
+    !> Velocities back to the bodies; the slot map is cleared for the next step.
+    subroutine unpack_bodies()
+      integer :: j, ib
+      do j = 1, solver%nbp
+        ib = solver%blist(j)
+        b%v(:, ib) = solver%bv(1:3, j)
+        solver%bslot(ib) = 0
+      end do
+      solver%nbp = 0
+    end subroutine unpack_bodies
+
+    !> Records of the active contacts in the current sweep order.
+    subroutine pack_contacts()
+      integer :: ii, k, j
+      j = 0
+      do ii = 1, n
+        k = solver%order(ii)
+        if (.not. c%active(k)) cycle
+        j = j + 1
+        solver%pidx(j) = k
+        solver%pb(1, j) = solver%bslot(c%cdb(k))
+        solver%pb(2, j) = solver%bslot(c%anb(k))
+        solver%pc(1:2, j) = c%normal(:, k)
+        solver%pc(3:6, j) = c%lever(:, k)
+        solver%pc(7:10, j) = c%w(:, k)
+        solver%pc(11:16, j) = c%wi(:, k)
+        solver%pc(17:18, j) = c%shift(:, k)
+        solver%pc(19, j) = c%mu(k)
+        solver%pc(20, j) = 0.0_wp
+        solver%pcoh(j) = 0
+        if (c%cohesive(k)) solver%pcoh(j) = k
+        solver%pr(:, j) = c%r(:, k)
+        solver%pst(j) = c%status(k)
+      end do
+      solver%np = j
+      solver%any_coh = any(solver%pcoh(1:j) /= 0)
+    end subroutine pack_contacts
+
+    !> Impulses and statuses back to the contact store.
+    subroutine unpack_contacts()
+      integer :: j, k
+      do j = 1, solver%np
+        k = solver%pidx(j)
+        c%r(:, k) = solver%pr(:, j)
+        c%status(k) = solver%pst(j)
+      end do
+    end subroutine unpack_contacts
+
     !> One Gauss–Seidel sweep; with check, LMGC90's norm sums of this sweep.
     subroutine sweep(check)
       logical, intent(in) :: check
       real(wp) :: s6(6)
-      call gs_sweep_2d(solver%order(1:n), c%active, c%cohesive, c%coh, solver%body, solver%geo, c%w, c%wi, &
-                       c%shift, c%mu, c%r, &
-                       c%status, b%v, b%inv_mass, solver%s%relax, check, s6, maxes)
+      integer :: np
+      np = solver%np
+      call gs_sweep_2d_packed(np, solver%pb, solver%pc, solver%pcoh, solver%any_coh, c%coh, solver%pr, solver%pst, solver%bv, &
+                              solver%s%relax, check, s6, maxes)
       if (check) sums(1:6) = s6
     end subroutine sweep
 

@@ -13,7 +13,7 @@ module fracas_scene
   use fracas_contact_laws, only: law_t, law_from_input, law_czm
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
   use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts, &
-                             n_internals
+                             history_knows_pair, n_internals
   use fracas_nlgs, only: nlgs_t, nlgs_settings_t, nlgs_report_t, nlgs_init, nlgs_prepare, nlgs_solve, &
                          nlgs_update_cohesive
   implicit none
@@ -219,6 +219,7 @@ contains
     type(scene_t), intent(inout) :: sc
     type(step_report_t), intent(out) :: rep
     integer :: k, pos, nover
+    logical :: pair_known
     integer(i8) :: t0, t1, t2, rate
     real(wp) :: margin, vmax, gap_end, dx(3), stored, coh_work, released, dissipated_all
     call system_clock(t0, rate)
@@ -239,6 +240,7 @@ contains
       end if
       call detect_fine(sc%det, sc%tactors, sc%q, c)
       do k = 1, c%n
+        pair_known = .false.
         pos = history_find(sc%hist, c%inter(k), c%cd(k), c%an(k), c%sub(k))
         if (pos > 0) then
           c%r(:, k) = sc%h * sc%hist%force(:, pos)
@@ -247,7 +249,9 @@ contains
         else
           ! A contact seen first with an overlap was missed while approaching:
           ! the alert distance is shorter than what bodies travel in a step.
-          if (c%gap(k) < 0.0_wp .and. sc%step > 0) then
+          ! (A polygon pair in contact may only have moved its contact point.)
+          if (c%gap(k) < 0.0_wp .and. sc%step > 0) pair_known = history_knows_pair(sc%hist, c%cd(k), c%an(k))
+          if (c%gap(k) < 0.0_wp .and. sc%step > 0 .and. .not. pair_known) then
             rep%late_contacts = rep%late_contacts + 1
             rep%late_overlap = max(rep%late_overlap, -c%gap(k))
           end if
