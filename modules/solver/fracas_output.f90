@@ -324,7 +324,8 @@ contains
     allocate (f(sc%contacts%n))
     do k = 1, sc%contacts%n
       f(k) = 0
-      if (sc%laws(sc%contacts%law(k))%kind == law_czm .and. sc%contacts%internals(4, k) <= 0.0_wp) f(k) = 1
+      if (sc%laws(sc%contacts%law(k))%kind /= law_czm) cycle
+      if (sc%contacts%internals(4, k) <= 0.0_wp) f(k) = 1
     end do
   end function broken_flags
 

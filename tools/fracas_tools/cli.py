@@ -81,6 +81,13 @@ def _cmd_synthetic(a):
     return 0
 
 
+def _cmd_render_vtk(a):
+    from .vtu import render
+    t = render(a.display_dir, a.frame, a.out)
+    print(f"{a.out} (t = {t:.6g} s)")
+    return 0
+
+
 def build_parser():
     p = argparse.ArgumentParser(prog="fracas-tools",
                                 description="Pre- and post-processing for Fracas cases.")
@@ -145,6 +152,12 @@ def build_parser():
     s.add_argument("--ny", type=int, default=6)
     s.add_argument("--seed", type=int, default=0)
     s.set_defaults(func=_cmd_synthetic)
+
+    s = sub.add_parser("render-vtk", help="draw one frame of DISPLAY/*.vtu (outlines, contact forces) as PNG")
+    s.add_argument("display_dir", help="a DISPLAY folder holding fracas.pvd")
+    s.add_argument("out", help="PNG file to write")
+    s.add_argument("--frame", type=int, default=-1, help="index of the output time (default: the last)")
+    s.set_defaults(func=_cmd_render_vtk)
     return p
 
 
