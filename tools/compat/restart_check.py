@@ -14,6 +14,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from fracas_tools.datbox import read_dof  # noqa: E402
+from compare_lmgc90 import read_vloc  # noqa: E402
 
 
 def run(fracas, case, out, settings, command):
@@ -60,7 +61,20 @@ def main():
     ok = worst <= a.tol
     print(f"{'PASS' if ok else 'FAIL'} max |continued - whole| / (1 + |whole|) over X and V: {worst:.3e} tol {a.tol:.1e}")
     fails += not ok
-    print(f"{2 - fails} passed, {fails} failed")
+    checks = 2
+    # Cohesive state (L, ut, un, beta, TPSini): the damage continues where it stopped.
+    vw = read_vloc(os.path.join(whole, "OUTBOX", "Vloc_Rloc.OUT.1"))
+    vc = read_vloc(os.path.join(second, "OUTBOX", "Vloc_Rloc.OUT.1"))
+    keys = [k for k in vw if vw[k]["internals"]]
+    if keys:
+        checks += 1
+        worst_i = max((abs(x - y) / (1.0 + abs(y)) for k in keys if k in vc
+                       for x, y in zip(vc[k]["internals"], vw[k]["internals"])), default=float("inf"))
+        ok = worst_i <= a.tol and all(k in vc for k in keys)
+        print(f"{'PASS' if ok else 'FAIL'} cohesive internals, max |continued - whole| / (1 + |whole|): "
+              f"{worst_i:.3e} tol {a.tol:.1e}")
+        fails += not ok
+    print(f"{checks - fails} passed, {fails} failed")
     sys.exit(1 if fails else 0)
 
 
