@@ -7,7 +7,7 @@ module fracas_contacts
   implicit none
   private
   public :: contacts_t, history_t, contacts_reserve, contacts_clear, history_from_contacts, &
-            history_find, history_build, history_knows_pair, n_internals
+            history_find, history_find_near, history_build, history_knows_pair, n_internals
 
   integer, parameter :: n_internals = 5   !< L, ut, un, beta, TPSini (2D cohesive laws)
 
@@ -48,6 +48,7 @@ module fracas_contacts
     integer, allocatable :: first(:)         !< (ntactors+1) offsets into the lists
     integer, allocatable :: inter(:), an(:), sub(:), status(:)
     real(wp), allocatable :: force(:, :)     !< (2,n) reaction / time step
+    real(wp), allocatable :: point(:, :)     !< (2,n) contact point
     real(wp), allocatable :: internals(:, :) !< (n_internals,n)
   end type history_t
 
@@ -90,17 +91,17 @@ contains
 
   !> Group records (cd, an, sub, inter, status, force) by candidate contactor.
   !> internals (n_internals, n) only for scenes with cohesive laws.
-  subroutine history_build(hist, ntactors, cd, an, sub, inter, status, force, internals)
+  subroutine history_build(hist, ntactors, cd, an, sub, inter, status, force, point, internals)
     type(history_t), intent(out) :: hist
     integer, intent(in) :: ntactors, cd(:), an(:), sub(:), inter(:), status(:)
-    real(wp), intent(in) :: force(:, :)
+    real(wp), intent(in) :: force(:, :), point(:, :)
     real(wp), intent(in), optional :: internals(:, :)
     integer :: k, n, pos
     integer, allocatable :: fill(:)
     n = size(cd)
     hist%n = n
     allocate (hist%first(ntactors + 1), hist%inter(n), hist%an(n), hist%sub(n), hist%status(n), &
-              hist%force(2, n))
+              hist%force(2, n), hist%point(2, n))
     if (present(internals)) allocate (hist%internals(n_internals, n))
     hist%first = 0
     do k = 1, n
@@ -119,6 +120,7 @@ contains
       hist%sub(pos) = sub(k)
       hist%status(pos) = status(k)
       hist%force(:, pos) = force(:, k)
+      hist%point(:, pos) = point(:, k)
       if (present(internals)) hist%internals(:, pos) = internals(:, k)
     end do
   end subroutine history_build
@@ -133,10 +135,10 @@ contains
     n = c%n
     if (c%with_cohesion) then
       call history_build(hist, ntactors, c%cd(1:n), c%an(1:n), c%sub(1:n), c%inter(1:n), c%status(1:n), &
-                         c%r(:, 1:n) / h, c%internals(:, 1:n))
+                         c%r(:, 1:n) / h, c%point(:, 1:n), c%internals(:, 1:n))
     else
       call history_build(hist, ntactors, c%cd(1:n), c%an(1:n), c%sub(1:n), c%inter(1:n), c%status(1:n), &
-                         c%r(:, 1:n) / h)
+                         c%r(:, 1:n) / h, c%point(:, 1:n))
     end if
   end subroutine history_from_contacts
 
@@ -158,6 +160,40 @@ contains
       end do
     end function has
   end function history_knows_pair
+
+  !> The past contact of the same type between contactors a and b, in either
+  !> role, whose point is nearest to `point` and closer than tol; 0 if none.
+  !> swapped tells that the past contact had a as antagonist (its tangential
+  !> direction, reaction and jump then change sign). This keeps the history of
+  !> a contact whose key changed: roles swapped or contact point moved to
+  !> another vertex (LMGC90 matches by position for the same reason).
+  pure subroutine history_find_near(hist, inter, a, b, point, tol, pos, swapped)
+    type(history_t), intent(in) :: hist
+    integer, intent(in) :: inter, a, b
+    real(wp), intent(in) :: point(2), tol
+    integer, intent(out) :: pos
+    logical, intent(out) :: swapped
+    real(wp) :: best, d
+    integer :: k, side, cd, an
+    pos = 0
+    swapped = .false.
+    best = tol
+    if (.not. allocated(hist%first)) return
+    do side = 1, 2
+      cd = merge(a, b, side == 1)
+      an = merge(b, a, side == 1)
+      if (cd + 1 > size(hist%first)) cycle
+      do k = hist%first(cd), hist%first(cd + 1) - 1
+        if (hist%an(k) /= an .or. hist%inter(k) /= inter) cycle
+        d = norm2(hist%point(:, k) - point)
+        if (d < best) then
+          best = d
+          pos = k
+          swapped = side == 2
+        end if
+      end do
+    end do
+  end subroutine history_find_near
 
   !> Index of the past contact (inter, cd, an, sub), 0 if there is none.
   pure integer function history_find(hist, inter, cd, an, sub) result(pos)

@@ -13,7 +13,7 @@ module fracas_scene
   use fracas_contact_laws, only: law_t, law_from_input, law_czm
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
   use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts, &
-                             history_knows_pair, n_internals
+                             history_find_near, history_knows_pair, n_internals
   use fracas_nlgs, only: nlgs_t, nlgs_settings_t, nlgs_report_t, nlgs_init, nlgs_prepare, nlgs_solve, &
                          nlgs_update_cohesive
   implicit none
@@ -64,7 +64,7 @@ contains
     type(scene_t), intent(out) :: sc
     integer :: nb, ib, im, k, j, pos
     integer, allocatable :: number(:), cd(:), an(:), sub(:), inter(:), status(:)
-    real(wp), allocatable :: ref(:, :), mass(:), inertia(:), avrd(:), force(:, :), internals(:, :)
+    real(wp), allocatable :: ref(:, :), mass(:), inertia(:), avrd(:), force(:, :), internals(:, :), points(:, :)
     real(wp) :: rec_internals(n_internals)
     real(wp) :: density, area, polar, gyrd
     character(len=5), allocatable :: nick(:)
@@ -138,7 +138,7 @@ contains
     allocate (sc%q(3, nb))
 
     ! History from Vloc_Rloc.INI: contactors named by (body, rank in body).
-    allocate (cd(0), an(0), sub(0), inter(0), status(0), force(2, 0), internals(n_internals, 0))
+    allocate (cd(0), an(0), sub(0), inter(0), status(0), force(2, 0), internals(n_internals, 0), points(2, 0))
     do k = 1, size(deck%vloc_ini)
       associate (r => deck%vloc_ini(k))
         j = inter_id(r%inter)
@@ -151,6 +151,7 @@ contains
         if (pos == 0) call input_error(r%src%file, r%src%line, 71, "unknown contact status '"//r%status//"'")
         status = [status, pos]
         force = reshape([force, [r%rlt, r%rln]], [2, size(cd)])
+        points = reshape([points, r%coor], [2, size(cd)])
         rec_internals = 0.0_wp
         if (allocated(r%internals)) then
           pos = min(n_internals, size(r%internals))
@@ -161,9 +162,9 @@ contains
     end do
     sc%contacts%with_cohesion = any(sc%laws%kind == law_czm)
     if (sc%contacts%with_cohesion) then
-      call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, internals)
+      call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, points, internals)
     else
-      call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force)
+      call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, points)
     end if
 
     ns%check = deck%run%nlgs_check
@@ -219,7 +220,7 @@ contains
     type(scene_t), intent(inout) :: sc
     type(step_report_t), intent(out) :: rep
     integer :: k, pos, nover
-    logical :: pair_known
+    logical :: pair_known, swapped
     integer(i8) :: t0, t1, t2, rate
     real(wp) :: margin, vmax, gap_end, dx(3), stored, coh_work, released, dissipated_all
     call system_clock(t0, rate)
@@ -241,11 +242,19 @@ contains
       call detect_fine(sc%det, sc%tactors, sc%q, c)
       do k = 1, c%n
         pair_known = .false.
+        swapped = .false.
         pos = history_find(sc%hist, c%inter(k), c%cd(k), c%an(k), c%sub(k))
+        if (pos == 0 .and. c%sub(k) > 0) &      ! polygons: the key may have changed, not the contact
+          call history_find_near(sc%hist, c%inter(k), c%cd(k), c%an(k), c%point(:, k), &
+                                 0.5_wp * max(c%length(k), tiny(1.0_wp)), pos, swapped)
         if (pos > 0) then
           c%r(:, k) = sc%h * sc%hist%force(:, pos)
           c%status_begin(k) = sc%hist%status(pos)
           if (c%with_cohesion) c%internals(:, k) = sc%hist%internals(:, pos)
+          if (swapped) then     ! the tangent t = (n2, -n1) turned with the normal
+            c%r(1, k) = -c%r(1, k)
+            if (c%with_cohesion) c%internals(2, k) = -c%internals(2, k)
+          end if
         else
           ! A contact seen first with an overlap was missed while approaching:
           ! the alert distance is shorter than what bodies travel in a step.
