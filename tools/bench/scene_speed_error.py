@@ -11,15 +11,17 @@ something for a chaotic granular medium, versus the CPU time of the run:
   force       final mean normal force of the loaded contacts / mean grain weight
   dissipated  energy dissipated over the run
   positions   RMS distance between the grains' positions and the reference's at a
-              short horizon (t_short, before the chaotic divergence), / mean radius
+              short horizon (t_short, before the chaotic divergence), / mean radius;
+              also against the dt = 1e-3, Quad 1e-5 run for the runs at dt = 1e-3
+              (columns tpos*: the NLGS error alone, without the time-step error)
 and, without a reference (accuracy of the run itself):
   statics     |sum of the vertical wall reactions / weight - 1| at the end (at rest)
   residual    mean over the steps of the natural-map residual ||F|| / ||q||
 
 Per-grain quantities of a chaotic flow differ between any two equivalent runs: the
-"chaos floor" of each error is measured as the spread between runs that differ only
-in the contact order (stored, reversed, colored) at dt = 1e-3 and Quad 1e-5; an
-error below the floor says nothing.
+"chaos floor" of each error is measured as the largest difference between runs that
+differ only in the contact order (stored, reversed, colored, shuffled) at dt = 1e-3
+and Quad 1e-5; an error below the floor says nothing.
 
     /usr/bin/python3 tools/bench/scene_speed_error.py                  # runs (cached) + table
     /usr/bin/python3 tools/bench/scene_speed_error.py --plots --csv bench/results/scene_speed_error.csv
@@ -27,8 +29,8 @@ error below the floor says nothing.
     /tmp/fracas_scene_bench; finished runs are reused), --jobs N (parallel runs,
     default 2), --scenes disks,polygons, --rerun (ignore cached runs)
 
-About 10 minutes on 2 shared cores (about 1000 s of CPU in total, the disk reference
-run alone about 400 s). Times are CPU time (user + system) of the whole fracas run,
+About 7 minutes on 2 shared cores with --jobs 2 (760 s of CPU in total, the disk
+reference run alone 285 s). Results and their reading: doc/benchmarks.md section 3. Times are CPU time (user + system) of the whole fracas run,
 from the child's rusage, so other jobs on a shared machine inflate them little.
 """
 
@@ -270,8 +272,13 @@ def analyse(info, scenes):
         for k in [m for m, _ in METRICS if m not in ABSOLUTE]:
             vals = [errors(data[a], data[b])[k] for i, a in enumerate(flo) for b in flo[i + 1:]]
             floor[k] = max(vals) if vals else float("nan")
+        tight = data[next(lab for lab, s in runs if s["dt"] == 1e-3 and s["check"] == "Quad" and
+                          s["tol"] == 1e-5 and s["order"] == "stored")]
         for lab, s in runs:
             e = errors(data[lab], ref)
+            et = errors(data[lab], tight) if s["dt"] == 1e-3 else {}
+            for t in T_SHORT:
+                e[f"tpos{t:g}"] = et.get(f"pos{t:g}", float("nan"))
             rows.append(dict(scene=scene, label=lab, role=s["role"], dt=s["dt"], check=s["check"], tol=s["tol"],
                              order=s["order"], cpu=info[(scene, lab)]["cpu"], sweeps=data[lab]["sweeps"],
                              nonconv=data[lab]["nonconv"], max_overlap=data[lab]["max_overlap"],
@@ -287,20 +294,26 @@ def analyse(info, scenes):
 # ----------------------------------------------------------------------------- output
 
 def table(rows):
-    keys = [m for m, _ in METRICS]
+    keys = [m for m, _ in METRICS] + [f"tpos{t:g}" for t in T_SHORT]
     print("| scene | run | CPU (s) | sweeps/step | non-conv. | KE end (J) | " + " | ".join(keys) + " |")
     print("|---|---|---|---|---|---|" + "---|" * len(keys))
     for r in rows:
         if r["role"] == "floor_spread":
             print(f"| {r['scene']} | chaos floor (order spread) | | | | | " +
-                  " | ".join("" if k in ABSOLUTE else f"{r['err_' + k]:.1e}" for k in keys) + " |")
+                  " | ".join("" if k in ABSOLUTE or k.startswith("t") else f"{r['err_' + k]:.1e}" for k in keys) + " |")
             continue
         lab = f"dt {r['dt']:g}, {r['check']} {r['tol']:g}" + ("" if r["order"] == "stored" else f", {r['order']}")
         if r["role"] == "reference":
             lab = "**reference** " + lab
+        cells = []
+        for k in keys:
+            v = r["err_" + k]
+            if r["role"] == "reference" and k not in ABSOLUTE and not k.startswith("t"):
+                cells.append("0")
+            else:
+                cells.append("" if math.isnan(v) else f"{v:.1e}")
         print(f"| {r['scene']} | {lab} | {r['cpu']:.1f} | {r['sweeps']:.0f} | {r['nonconv']} | {r['ke_final']:.0e} | " +
-              " | ".join(f"{r['err_' + k]:.1e}" if r["role"] != "reference" or k in ABSOLUTE
-                         else "0" for k in keys) + " |")
+              " | ".join(cells) + " |")
 
 
 def plots(rows, scenes, img_dir):
@@ -331,6 +344,16 @@ def plots(rows, scenes, img_dir):
                 for r, xx, yy in zip(pts, x, y):
                     txt = f"{r['tol']:g}" if ann == "tol" else (f"{r['dt']:g}" if ann == "dt" else r["order"][:3])
                     ax.annotate(txt, (xx, yy), fontsize=6, xytext=(3, 3), textcoords="offset points")
+            if key.startswith("pos"):
+                pts = sorted([r for r in rs if r["dt"] == 1e-3 and r["check"] == "Quad" and r["order"] == "stored"
+                              and r["role"] == "sweep" and r["tol"] > 1e-5], key=lambda r: r["cpu"])
+                ax.loglog([r["cpu"] for r in pts], [max(r["err_t" + key], 1e-16) for r in pts], ":o", color="C0",
+                          mfc="none", ms=5, label="Quad, dt 1e-3, against Quad 1e-5 at dt 1e-3 (NLGS error alone)")
+                for r in pts:
+                    ax.annotate(f"{r['tol']:g}", (r["cpu"], max(r["err_t" + key], 1e-16)), fontsize=6,
+                                xytext=(3, -8), textcoords="offset points")
+                if key == f"pos{T_SHORT[0]:g}":
+                    ax.legend(fontsize=6, loc="lower left")
             if key in ABSOLUTE:
                 ref = next(r for r in rs if r["role"] == "reference")
                 ax.loglog([ref["cpu"]], [max(ref["err_" + key], 1e-16)], "k*", ms=9, label="reference")
