@@ -122,7 +122,7 @@ module fracas_deck
     real(wp) :: nlgs_relaxation = 1.0_wp
     integer :: nlgs_sweeps_per_check = 50
     integer :: nlgs_max_checks = 400
-    character(len=8) :: nlgs_order = 'stored' !< 'stored', 'reversed', 'shuffled'
+    character(len=8) :: nlgs_order = 'stored' !< 'stored', 'reversed', 'shuffled', 'colored'
     integer :: nlgs_seed = 1
     integer :: output_dof_every = 0      !< DOF.OUT.n / Vloc_Rloc.OUT.n every n steps (0: last step only)
     integer :: output_vtk_every = 0      !< DISPLAY/*.vtu every n steps (0: none)

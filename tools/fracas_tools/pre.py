@@ -521,7 +521,7 @@ COMMAND_KEYWORDS = {
     "nlgs_relaxation": float,
     "nlgs_sweeps_per_check": int,
     "nlgs_max_checks": int,
-    "nlgs_order": ("stored", "reversed", "shuffled"),
+    "nlgs_order": ("stored", "reversed", "shuffled", "colored"),
     "nlgs_seed": int,
     "output_dof_every": int,
     "output_vtk_every": int,
