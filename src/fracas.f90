@@ -10,6 +10,7 @@ program fracas
   use fracas_output, only: output_t, output_open, output_vtk, output_outbox, output_snapshot, &
                            output_series, output_close
   use fracas_version, only: version_string
+  use fracas_command_line, only: argument_value
   implicit none
 
   character(len=:), allocatable :: case_dir, command_file, out_dir, arg
@@ -19,7 +20,7 @@ program fracas
   type(scene_t) :: sc
   type(output_t) :: out
   type(step_report_t) :: rep
-  integer :: i, nargs, nsteps, istep, every, total_sweeps, unconverged, len_arg, late
+  integer :: i, nargs, nsteps, istep, every, total_sweeps, unconverged, late
   real(wp) :: late_max
   integer(int64) :: t0, t1, rate
   real(wp) :: elapsed, worst_residual
@@ -36,7 +37,7 @@ contains
     i = 0
     do while (i < nargs)
       i = i + 1
-      arg = argument(i)
+      arg = argument_value(i, 'argument')
       select case (arg)
       case ('--check')
         check_only = .true.
@@ -46,13 +47,13 @@ contains
         overwrite = .true.
       case ('--command')
         i = i + 1
-        command_file = argument(i)
+        command_file = argument_value(i, arg)
       case ('--output')
         i = i + 1
-        out_dir = argument(i)
+        out_dir = argument_value(i, arg)
       case ('--set')
         i = i + 1
-        settings = [character(len=1024) :: settings, argument(i)]
+        settings = [character(len=1024) :: settings, argument_value(i, arg)]
       case ('--version')
         write (output_unit, '(a)') 'fracas '//version_string
         return
@@ -149,14 +150,6 @@ contains
     flush (output_unit)
   end subroutine progress
 
-  function argument(k) result(s)
-    integer, intent(in) :: k
-    character(len=:), allocatable :: s
-    if (k > nargs) call fatal('option '//arg//' needs a value')
-    call get_command_argument(k, length=len_arg)
-    allocate (character(len=len_arg) :: s)
-    call get_command_argument(k, s)
-  end function argument
 
   subroutine usage()
     write (output_unit, '(a)') &

@@ -9,6 +9,8 @@ program fracas_fclib
   use fracas_sdl, only: sdl_problem_t, sdl_settings_t, sdl_report_t, sdl_history_t, sdl_build, sdl_solve, &
                         sdl_error, sdl_history_points
   use fracas_version, only: version_string
+  use fracas_command_line, only: argument_value
+  use fracas_datbox_text, only: lower, itoa
   implicit none
 
   character(len=:), allocatable :: arg, path, out_file, hist_file, eval_file
@@ -18,7 +20,7 @@ program fracas_fclib
   type(sdl_report_t) :: rep, best
   type(sdl_history_t) :: hist
   real(wp), allocatable :: r(:, :), rbest(:, :)
-  integer :: nargs, i, len_arg, repeat, irun
+  integer :: nargs, i, repeat, irun
   logical :: quiet
 
   call main()
@@ -34,20 +36,20 @@ contains
     i = 0
     do while (i < nargs)
       i = i + 1
-      arg = argument(i)
+      arg = argument_value(i, 'argument')
       select case (arg)
       case ('--err-tol')
         s%err_tol = real_value()
         if (s%err_tol < 0.0_wp) call fatal('--err-tol must be >= 0 (0: no natural-map stop)')
       case ('--check')
         i = i + 1
-        select case (lower(argument(i)))
+        select case (lower(argument_value(i, arg)))
         case ('quad'); s%check = 'Quad '
         case ('maxm'); s%check = 'Maxm '
         case ('qm/16'); s%check = 'QM/16'
         case ('none'); s%check = 'none '
         case default
-          call fatal("--check expects Quad, Maxm, QM/16 or none, got '"//argument(i)//"'")
+          call fatal("--check expects Quad, Maxm, QM/16 or none, got '"//argument_value(i, arg)//"'")
         end select
       case ('--tol')
         s%tol = real_value()
@@ -63,9 +65,9 @@ contains
         if (s%max_sweeps < 0) call fatal('--max-sweeps must be >= 0')
       case ('--order')
         i = i + 1
-        s%order = lower(argument(i))
+        s%order = lower(argument_value(i, arg))
         if (s%order /= 'stored' .and. s%order /= 'reversed' .and. s%order /= 'shuffled') &
-          call fatal("--order expects stored, reversed or shuffled, got '"//argument(i)//"'")
+          call fatal("--order expects stored, reversed or shuffled, got '"//argument_value(i, arg)//"'")
       case ('--seed')
         s%seed = int_value()
       case ('--accel')
@@ -78,13 +80,13 @@ contains
         if (repeat < 1) call fatal('--repeat must be >= 1')
       case ('--output', '-o')
         i = i + 1
-        out_file = argument(i)
+        out_file = argument_value(i, arg)
       case ('--history')
         i = i + 1
-        hist_file = argument(i)
+        hist_file = argument_value(i, arg)
       case ('--evaluate')
         i = i + 1
-        eval_file = argument(i)
+        eval_file = argument_value(i, arg)
       case ('--quiet', '-q')
         quiet = .true.
       case ('--version')
@@ -186,7 +188,7 @@ contains
     integer :: ios
     character(len=:), allocatable :: a
     i = i + 1
-    a = argument(i)
+    a = argument_value(i, arg)
     read (a, *, iostat=ios) x
     if (ios /= 0) call fatal('option '//arg//" expects a number, got '"//a//"'")
   end function real_value
@@ -195,37 +197,13 @@ contains
     integer :: ios
     character(len=:), allocatable :: a
     i = i + 1
-    a = argument(i)
+    a = argument_value(i, arg)
     read (a, *, iostat=ios) n
     if (ios /= 0) call fatal('option '//arg//" expects an integer, got '"//a//"'")
   end function int_value
 
-  function argument(k) result(str)
-    integer, intent(in) :: k
-    character(len=:), allocatable :: str
-    if (k > nargs) call fatal('option '//arg//' needs a value')
-    call get_command_argument(k, length=len_arg)
-    allocate (character(len=len_arg) :: str)
-    call get_command_argument(k, str)
-  end function argument
 
-  pure function lower(a) result(b)
-    character(len=*), intent(in) :: a
-    character(len=len(a)) :: b
-    integer :: k
-    b = a
-    do k = 1, len(a)
-      if (a(k:k) >= 'A' .and. a(k:k) <= 'Z') b(k:k) = achar(iachar(a(k:k)) + 32)
-    end do
-  end function lower
 
-  pure function itoa(n) result(str)
-    integer, intent(in) :: n
-    character(len=:), allocatable :: str
-    character(len=16) :: buf
-    write (buf, '(i0)') n
-    str = trim(buf)
-  end function itoa
 
   subroutine usage()
     write (output_unit, '(a)') &
