@@ -8,7 +8,7 @@ module fracas_deck
   private
   public :: source_t, tactor_input_t, body_input_t, material_input_t, law_input_t, &
             see_rule_input_t, driven_dof_input_t, dof_record_t, contact_record_t, &
-            run_control_t, deck_t
+            run_control_t, deck_t, element_input_t, model_input_t, gpv_record_t
 
   !> Where a record was read: file name as given to the reader and line number.
   type :: source_t
@@ -16,33 +16,70 @@ module fracas_deck
     integer :: line = 0
   end type source_t
 
-  !> One $tacty line of BODIES.DAT.
+  !> One contactor of BODIES.DAT, numbered as LMGC90 numbers them in
+  !> Vloc_Rloc (rank within the body): each CLxxx line (first or '+') is one
+  !> candidate point; an ALpxx line and its '+' lines form one polyline.
   type :: tactor_input_t
-    character(len=5) :: kind = ''        !< 'DISKx', 'xKSID', 'JONCx', 'POLYG'
+    character(len=5) :: kind = ''        !< 'DISKx', 'xKSID', 'JONCx', 'POLYG', 'DISKb', 'CLxxx', 'ALpxx'
     character(len=5) :: color = ''
     real(wp) :: radius = 0.0_wp          !< DISKx/xKSID: byrd
     real(wp) :: ax1 = 0.0_wp, ax2 = 0.0_wp  !< JONCx: half length, half thickness
     real(wp) :: shift(2) = 0.0_wp        !< offset of the contactor from the body node (DISKb)
     real(wp), allocatable :: vertices(:, :)  !< POLYG: (2, nb_vertex), as read
+    !> Mesh contactors, node numbers within the body: CLxxx [noda, nodb] (the
+    !> point is (1 - apab) x_noda + apab x_nodb); ALpxx the polyline's nodes
+    !> in order (segment k joins nodes(k) and nodes(k+1)).
+    integer, allocatable :: nodes(:)
+    real(wp) :: apab = 0.0_wp
     type(source_t) :: src
   end type tactor_input_t
 
-  !> One $bdyty block of BODIES.DAT (RBDY2 only for now).
+  !> One element line of a MAILx $blmty block with its 'model ... behav' line.
+  type :: element_input_t
+    character(len=5) :: kind = ''        !< geometry as written: 'T3xxx', 'Q4xxx', 'T6xxx', 'Q8xxx'
+    integer, allocatable :: nodes(:)     !< node numbers within the body
+    character(len=5) :: model = ''       !< MODELS.DAT nickname
+    character(len=5) :: behav = ''       !< BULK_BEHAV.DAT material nickname
+    type(source_t) :: src
+  end type element_input_t
+
+  !> One $bdyty block of BODIES.DAT: a rigid body (RBDY2) or a meshed body (MAILx).
   type :: body_input_t
-    character(len=5) :: model = 'RBDY2'
-    integer :: number = 0                !< serial number = order of appearance (1-based)
-    character(len=5) :: behav = ''       !< material nickname ($blmty PLAIN)
+    character(len=5) :: model = 'RBDY2'  !< 'RBDY2' or 'MAILx'
+    integer :: number = 0                !< number within its model (1-based order of appearance, as LMGC90)
+    character(len=5) :: behav = ''       !< RBDY2: material nickname ($blmty PLAIN)
     real(wp) :: avrd = 0.0_wp, gyrd = 0.0_wp  !< 0 means: compute from the contactors
-    real(wp) :: coor(3) = 0.0_wp         !< NO3xx reference x, y, angle
+    real(wp) :: coor(3) = 0.0_wp         !< RBDY2: NO3xx reference x, y, angle
+    real(wp), allocatable :: node_coor(:, :)  !< MAILx: (2, nnodes) NO2xx reference coordinates
+    type(element_input_t), allocatable :: elements(:)  !< MAILx elements
     type(tactor_input_t), allocatable :: tactors(:)
     type(source_t) :: src
   end type body_input_t
 
+  !> One model of MODELS.DAT (MECAx physics), options as LMGC90's
+  !> pre-processor writes them.
+  type :: model_input_t
+    character(len=5) :: nickname = ''
+    character(len=5) :: physics = 'MECAx'
+    character(len=5) :: element = ''     !< 'T3xxx', 'Q4xxx', 'T6xxx', 'Q8xxx', 'Q4P0x', ...
+    character(len=5) :: kinematic = 'small'   !< kine_: small | large
+    character(len=5) :: formulation = ''      !< form_: UpdtL | TotaL (large kinematics)
+    character(len=5) :: material = 'elas_'    !< mater: elas_ | J2iso | ...
+    character(len=5) :: mass_storage = 'lump_' !< mstrg: lump_ | coher
+    character(len=5) :: anisotropy = 'iso__'  !< aniso
+    character(len=5) :: external = 'no___'    !< isext
+    type(source_t) :: src
+  end type model_input_t
+
   !> One $behav block of BULK_BEHAV.DAT.
   type :: material_input_t
     character(len=5) :: nickname = ''
-    character(len=30) :: law = ''        !< 'RIGID' for rigid bodies
+    character(len=30) :: law = ''        !< 'RIGID', 'ELAS', 'ELAS_PLAS'
     real(wp) :: density = 0.0_wp         !< Umas
+    real(wp) :: young = 0.0_wp, poisson = 0.0_wp   !< ELAS, ELAS_PLAS: EYng, Epss
+    !> ELAS_PLAS (von Mises, linear isotropic hardening): yield stress
+    !> sigma_y = yield0 + hardening p (SIG0, K___), p the cumulative plastic strain.
+    real(wp) :: yield0 = 0.0_wp, hardening = 0.0_wp
     type(source_t) :: src
   end type material_input_t
 
@@ -69,8 +106,10 @@ module fracas_deck
   !> (ct + amp*cos(omega*t + phi)) * min(1, rampi + ramp*t), or the piecewise
   !> linear interpolation of an evolution file (t, value).
   type :: driven_dof_input_t
-    integer :: body = 0                  !< body serial number
-    integer :: dof = 0                   !< 1..3 for RBDY2
+    character(len=5) :: model = 'RBDY2'  !< 'RBDY2' or 'MAILx'
+    integer :: body = 0                  !< body number within its model
+    integer :: node = 0                  !< MAILx: node number within the body (0 for RBDY2)
+    integer :: dof = 0                   !< 1..3 for RBDY2, 1..2 for a MAILx node
     character(len=5) :: kind = ''        !< 'vlocy' or 'force'
     real(wp) :: ct = 0.0_wp, amp = 0.0_wp, omega = 0.0_wp, phi = 0.0_wp
     real(wp) :: rampi = 0.0_wp, ramp = 0.0_wp
@@ -84,10 +123,23 @@ module fracas_deck
   !> configuration (x, y, rotation) and velocity.
   type :: dof_record_t
     character(len=5) :: model = 'RBDY2'
-    integer :: body = 0
-    real(wp) :: x(3) = 0.0_wp, v(3) = 0.0_wp
+    integer :: body = 0                  !< body number within its model
+    real(wp) :: x(3) = 0.0_wp, v(3) = 0.0_wp   !< RBDY2
+    !> MAILx: displacement and velocity of every node listed, (2, nnodes), and
+    !> the node numbers they belong to.
+    integer, allocatable :: nodes(:)
+    real(wp), allocatable :: node_x(:, :), node_v(:, :)
     type(source_t) :: src
   end type dof_record_t
+
+  !> Gauss-point values of one element in GPV.INI / GPV.OUT.n: per Gauss point
+  !> the lines LMGC90 writes (small strain: stress (xx, yy, xy, zz), strain
+  !> (xx, yy, 2 xy, zz); J2 adds a line of internal values).
+  type :: gpv_record_t
+    integer :: body = 0, element = 0
+    real(wp), allocatable :: values(:, :)   !< (values per Gauss point, Gauss points)
+    type(source_t) :: src
+  end type gpv_record_t
 
   !> One $icdan block of Vloc_Rloc.INI / Vloc_Rloc.OUT.n. Reactions are stored
   !> as forces (impulse / time step), as LMGC90 writes them.
@@ -128,13 +180,19 @@ module fracas_deck
     integer :: output_vtk_every = 0      !< DISPLAY/*.vtu every n steps (0: none)
     integer :: output_hdf5_every = 10    !< snapshot in fracas.h5 every n steps (0: none)
     integer :: progress_every = 0        !< progress line every n steps (0: about 20 lines a run)
+    ! Meshed bodies (see doc/input_reference.md)
+    character(len=6) :: plane = 'strain'      !< 2D hypothesis of meshed bodies: 'strain' | 'stress'
+    real(wp) :: newton_tolerance = 1.0e-6_wp  !< relative residual of the Newton loop of nonlinear bodies
+    integer :: newton_max_iterations = 20
+    character(len=7) :: linear_solver = 'auto'  !< 'auto', 'dense', 'cholmod'
   end type run_control_t
 
   !> Everything read from one case directory.
   type :: deck_t
     character(len=:), allocatable :: case_dir, datbox
     real(wp) :: gravity(3) = 0.0_wp
-    type(body_input_t), allocatable :: bodies(:)
+    type(body_input_t), allocatable :: bodies(:)     !< in the order of BODIES.DAT, all models
+    type(model_input_t), allocatable :: models(:)    !< MODELS.DAT (empty without meshed bodies)
     type(material_input_t), allocatable :: materials(:)
     type(law_input_t), allocatable :: laws(:)
     type(see_rule_input_t), allocatable :: see_rules(:)
@@ -145,6 +203,7 @@ module fracas_deck
     integer :: vloc_step = 0
     real(wp) :: vloc_time = 0.0_wp
     type(contact_record_t), allocatable :: vloc_ini(:)
+    type(gpv_record_t), allocatable :: gpv_ini(:)    !< GPV.INI (empty when absent or '$steps 0' only)
     type(run_control_t) :: run
   end type deck_t
 end module fracas_deck
