@@ -410,8 +410,9 @@ contains
     do g = 1, ng
       call el_shape(kind, xi(:, g), n, dn)
       call physical_derivatives(nn, x, dn, dnx, det)
+      ! (n_a n_b) first: the matrix comes out exactly symmetric
       do b = 1, nn
-        ms(1:nn, b) = ms(1:nn, b) + rho * w(g) * det * n(1:nn) * n(b)
+        ms(1:nn, b) = ms(1:nn, b) + (rho * w(g) * det) * (n(1:nn) * n(b))
       end do
     end do
     m(1:2 * nn, 1:2 * nn) = 0.0_wp
