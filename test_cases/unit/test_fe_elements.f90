@@ -14,7 +14,11 @@
 !> - the element tangent against central differences of fi (1e-6 relative)
 !>   in J2 plastic states, all kinds, both planes;
 !> - plastic work of a uniform uniaxial strain in plane strain: area times
-!>   yield0 p + H p^2 / 2 with p = (2 G eps - yield0) / (3 G + H).
+!>   yield0 p + H p^2 / 2 with p = (2 G eps - yield0) / (3 G + H);
+!> - Q4P0 (mean dilatation, plane strain): for any displacement the 3D trace
+!>   of the strain is the same at every Gauss point and equals the element
+!>   mean of div u (so the elastic pressure is one per element), the 3D
+!>   deviator is the Q4's; a plain Q4 has a varying trace (guard).
 program test_fe_elements
   use fracas_kinds, only: wp
   use fracas_testing, only: check_close, check_true, test_finish
@@ -23,7 +27,7 @@ program test_fe_elements
   use fracas_elements, only: el_t3, el_q4, el_t6, el_q8, el_q4p0, el_kind_of, el_nnodes, el_ngauss, &
                              el_ngauss_gpv, el_edges, el_edge_midnodes, el_vtk_type, el_vtk_order, &
                              el_mass, el_response, el_area, el_gauss_points_xy, el_geometry_ok, &
-                             el_max_dofs, el_max_gauss
+                             el_max_gauss
   implicit none
 
   type(bulk_t) :: elastic, steel
@@ -45,6 +49,7 @@ program test_fe_elements
   call mass_closed_forms()
   call lmgc90_q4_gauss_order()
   call plastic_work_uniform()
+  call mean_dilatation()
   call test_finish()
 
 contains
@@ -302,4 +307,58 @@ contains
                        1.0_wp, 1.0e-12_wp)
     end do
   end subroutine plastic_work_uniform
+  subroutine mean_dilatation()
+    real(wp) :: x(2, 8), u(8), fi(8), dum(1, 1), gp0(gp_size, 4), gb(gp_size, 4), gq(gp_size, 4), ee, pw
+    real(wp) :: tr_bar(4), tr_q4(4), mean_div, dev_err, area
+    integer :: a, g
+    call geometry(el_q4, x)
+    do a = 1, 4
+      u(2 * a - 1) = 1.0e-4_wp * sin(1.0_wp + 2.3_wp * a)
+      u(2 * a) = 1.0e-4_wp * cos(0.5_wp + 1.7_wp * a)
+    end do
+    gp0 = 0.0_wp
+    call el_response(el_q4p0, x(:, 1:4), u, elastic, plane_strain, gp0, gb, fi, dum, .false., ee, pw)
+    call el_response(el_q4, x(:, 1:4), u, elastic, plane_strain, gp0, gq, fi, dum, .false., ee, pw)
+    do g = 1, 4
+      tr_bar(g) = gb(gp_strain, g) + gb(gp_strain + 1, g) + gb(gp_strain + 3, g)
+      tr_q4(g) = gq(gp_strain, g) + gq(gp_strain + 1, g)
+    end do
+    ! element mean of div u = area-weighted mean of the Q4 traces (2x2 rule exact)
+    mean_div = 0.0_wp
+    area = 0.0_wp
+    do g = 1, 4
+      mean_div = mean_div + q4_det(x, g) * tr_q4(g)
+      area = area + q4_det(x, g)
+    end do
+    mean_div = mean_div / area
+    call check_close('Q4P0: trace at every Gauss point / element mean of div u', &
+                     maxval(abs(tr_bar - mean_div)) / abs(mean_div), 0.0_wp, 1.0e-12_wp)
+    dev_err = 0.0_wp
+    do g = 1, 4
+      dev_err = max(dev_err, abs((gb(gp_strain, g) - tr_bar(g) / 3.0_wp) - (gq(gp_strain, g) - tr_q4(g) / 3.0_wp)), &
+                    abs((gb(gp_strain + 3, g) - tr_bar(g) / 3.0_wp) - (-tr_q4(g) / 3.0_wp)), &
+                    abs(gb(gp_strain + 2, g) - gq(gp_strain + 2, g)))
+    end do
+    call check_close('Q4P0: 3D strain deviator equals the Q4''s', dev_err / maxval(abs(tr_q4)), 0.0_wp, 1.0e-12_wp)
+    call check_true('Q4 guard: the plain Q4 trace varies between Gauss points', &
+                    maxval(tr_q4) - minval(tr_q4) > 1.0e-3_wp * maxval(abs(tr_q4)))
+  end subroutine mean_dilatation
+
+  !> Jacobian of a Q4 at its Gauss point g (LMGC90 order; weights are 1),
+  !> written out here independently of fracas_elements.
+  real(wp) function q4_det(x, g)
+    real(wp), intent(in) :: x(2, 8)
+    integer, intent(in) :: g
+    real(wp), parameter :: sx(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp], sy(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
+    real(wp) :: xi, eta, jac(2, 2)
+    integer :: a
+    xi = merge(-1.0_wp, 1.0_wp, mod(g, 2) == 1) / sqrt(3.0_wp)
+    eta = merge(-1.0_wp, 1.0_wp, g <= 2) / sqrt(3.0_wp)
+    jac = 0.0_wp
+    do a = 1, 4
+      jac(1, :) = jac(1, :) + 0.25_wp * sx(a) * (1.0_wp + sy(a) * eta) * x(:, a)
+      jac(2, :) = jac(2, :) + 0.25_wp * sy(a) * (1.0_wp + sx(a) * xi) * x(:, a)
+    end do
+    q4_det = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+  end function q4_det
 end program test_fe_elements
