@@ -69,10 +69,11 @@ module fracas_linear_solver
   logical, save :: fallback_reported = .false.
 
   interface
-    function fss_create(kind, n, colptr, rowind, ordering, status) result(handle) bind(C, name='fss_create')
-      import :: c_ptr, c_int
+    function fss_create(kind, n, colptr, rowind, val, ordering, status) result(handle) bind(C, name='fss_create')
+      import :: c_ptr, c_int, c_double
       integer(c_int), value :: kind, n, ordering
       integer(c_int), intent(in) :: colptr(*), rowind(*)
+      real(c_double), intent(in) :: val(*)
       integer(c_int), intent(out) :: status
       type(c_ptr) :: handle
     end function fss_create
@@ -229,35 +230,46 @@ contains
   !> b := A^-1 b for one right-hand side.
   subroutine factor_solve_1(f, b)
     type(factor_t), intent(inout) :: f
-    real(wp), intent(inout), contiguous, target :: b(:)
-    real(wp), pointer :: b2(:, :)
-    b2(1:size(b), 1:1) => b
-    call factor_solve_n(f, b2)
+    real(wp), intent(inout), contiguous :: b(:)
+    call check_rhs(f, size(b))
+    call solve_columns(f, b, 1)
   end subroutine factor_solve_1
 
   !> b := A^-1 b for the columns of b(n, nrhs).
   subroutine factor_solve_n(f, b)
     type(factor_t), intent(inout) :: f
     real(wp), intent(inout), contiguous :: b(:, :)
+    call check_rhs(f, size(b, 1))
+    call solve_columns(f, b, size(b, 2))
+  end subroutine factor_solve_n
+
+  subroutine check_rhs(f, n)
+    type(factor_t), intent(in) :: f
+    integer, intent(in) :: n
+    if (f%kind == kind_none) call fatal('factor_solve: the factor was never built (call factor_build first)')
+    if (n /= f%n) call fatal('factor_solve: right-hand side of length '//itoa(n)//' for a factor of size '//itoa(f%n))
+  end subroutine check_rhs
+
+  !> The solve itself on nrhs contiguous columns (one or several, by sequence association).
+  subroutine solve_columns(f, b, nrhs)
+    type(factor_t), intent(inout) :: f
+    integer, intent(in) :: nrhs
+    real(wp), intent(inout) :: b(f%n, nrhs)
     integer :: info
     integer(c_int) :: status
-
-    if (f%kind == kind_none) call fatal('factor_solve: the factor was never built (call factor_build first)')
-    if (size(b, 1) /= f%n) &
-      call fatal('factor_solve: right-hand side of length '//itoa(size(b, 1))//' for a factor of size '//itoa(f%n))
-    if (f%n == 0 .or. size(b, 2) == 0) return
+    if (f%n == 0 .or. nrhs == 0) return
     select case (f%kind)
     case (kind_dense_cholesky)
-      call dpotrs('U', f%n, size(b, 2), f%dense, f%n, b, f%n, info)
+      call dpotrs('U', f%n, nrhs, f%dense, f%n, b, f%n, info)
       if (info /= 0) call fatal('factor_solve: LAPACK dpotrs failed (info '//itoa(info)//')')
     case (kind_dense_lu)
-      call dgetrs('N', f%n, size(b, 2), f%dense, f%n, f%ipiv, b, f%n, info)
+      call dgetrs('N', f%n, nrhs, f%dense, f%n, f%ipiv, b, f%n, info)
       if (info /= 0) call fatal('factor_solve: LAPACK dgetrs failed (info '//itoa(info)//')')
     case (kind_cholmod, kind_umfpack)
-      status = fss_solve(f%handle, b, int(f%n, c_int), int(size(b, 2), c_int))
+      status = fss_solve(f%handle, b, int(f%n, c_int), int(nrhs, c_int))
       if (status /= fss_ok) call fatal('factor_solve: '//c_text(f%handle, .false.))
     end select
-  end subroutine factor_solve_n
+  end subroutine solve_columns
 
   !> What f is: library, algorithm, ordering, size and fill, e.g.
   !> 'CHOLMOD supernodal LL^T, METIS ordering, n = 20000, nnz(L) = 412345'.
@@ -397,7 +409,7 @@ contains
     if (allocated(f%dense)) deallocate (f%dense)
     if (allocated(f%ipiv)) deallocate (f%ipiv)
     f%kind = merge(kind_cholmod, kind_umfpack, which == fss_cholmod)
-    f%handle = fss_create(which, int(a%n, c_int), a%colptr, a%rowind, f%ordering, status)
+    f%handle = fss_create(which, int(a%n, c_int), a%colptr, a%rowind, a%val, f%ordering, status)
     if (.not. c_associated(f%handle)) call fatal('factor_build: out of memory for a sparse factor')
     if (status == fss_ok) status = fss_factor(f%handle, a%colptr, a%rowind, a%val)
     why = ''

@@ -5,11 +5,11 @@
  * factors), 0-based copies of what the library keeps pointing at, the symbolic analysis
  * (reused by every numeric refactorization on the same pattern) and the solve workspaces.
  *
- *   fss_create   copy the pattern, choose the ordering, symbolic analysis
+ *   fss_create   copy the pattern, choose the ordering, symbolic analysis (values: UMFPACK's strategy)
  *   fss_factor   numeric factorization with the current values (build and update)
  *   fss_solve    B := A^-1 B in place, nrhs columns of leading dimension ldb
  *   fss_describe one line naming the method, ordering and nnz of the factor
- *   fss_message  the last error text; fss_minor the failed column (1-based)
+ *   fss_message  the last error text; fss_minor the dof whose pivot failed (1-based)
  *   fss_free     release everything
  *
  * CHOLMOD is given the upper triangle (stype = 1), as LAPACK's dpotrf('U') is.
@@ -35,7 +35,7 @@ enum {
 typedef struct {
   int kind, n, nnz;
   uint64_t pattern_hash;
-  int minor;        /* 1-based column where the last factorization failed, 0 if none */
+  int minor;        /* 1-based dof whose pivot failed in the last factorization, 0 if none */
   int metis_failed; /* METIS was asked for and failed: AMD was used */
   char message[256];
   /* CHOLMOD */
@@ -112,8 +112,8 @@ static int cholmod_analyze_ordered(fss_t *f, int ordering) {
   return FSS_OK;
 }
 
-void *fss_create(int kind, int n, const int *colptr, const int *rowind, int ordering,
-                 int *status) {
+void *fss_create(int kind, int n, const int *colptr, const int *rowind, const double *val,
+                 int ordering, int *status) {
   fss_t *f = calloc(1, sizeof *f);
   if (!f) {
     *status = FSS_FAILED;
@@ -172,7 +172,9 @@ void *fss_create(int kind, int n, const int *colptr, const int *rowind, int orde
     f->control[UMFPACK_ORDERING] = ordering == FSS_ORDER_AMD     ? UMFPACK_ORDERING_AMD
                                    : ordering == FSS_ORDER_METIS ? UMFPACK_ORDERING_METIS
                                                                  : UMFPACK_ORDERING_CHOLMOD;
-    int st = umfpack_di_symbolic(n, n, f->ap, f->ai, NULL, &f->symbolic, f->control, f->info);
+    /* With the values, UMFPACK sees a nonzero diagonal and picks its symmetric strategy
+     * (diagonal pivots, AMD on A + A^T) for an SPD matrix. */
+    int st = umfpack_di_symbolic(n, n, f->ap, f->ai, val, &f->symbolic, f->control, f->info);
     if (st != UMFPACK_OK) {
       snprintf(f->message, sizeof f->message, "UMFPACK symbolic analysis failed (status %d)", st);
       *status = FSS_FAILED;
@@ -201,9 +203,13 @@ int fss_factor(void *handle, const int *colptr, const int *rowind, const double 
     f->common.status = CHOLMOD_OK;
     int ok = cholmod_factorize(f->upper, f->factor, &f->common);
     if (f->common.status == CHOLMOD_NOT_POSDEF) {
-      f->minor = (int)f->factor->minor + 1;
-      snprintf(f->message, sizeof f->message, "matrix not positive definite (column %d of %d)",
-               f->minor, f->n);
+      /* L->minor counts in the permuted order: name the dof of the matrix as given. */
+      const int step = (int)f->factor->minor;
+      const int *perm = f->factor->Perm;
+      f->minor = (perm ? perm[step] : step) + 1;
+      snprintf(f->message, sizeof f->message,
+               "matrix not positive definite (pivot of dof %d, elimination step %d of %d)",
+               f->minor, step + 1, f->n);
       return FSS_NOT_POSDEF;
     }
     if (!ok || f->common.status < CHOLMOD_OK) {
