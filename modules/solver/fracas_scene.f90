@@ -5,7 +5,7 @@
 module fracas_scene
   use fracas_kinds, only: wp, i8
   use fracas_deck, only: deck_t, body_input_t
-  use fracas_errors, only: input_error
+  use fracas_errors, only: input_error, fatal
   use fracas_ids, only: inter_id, status_id
   use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
                           rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy, drive_value
@@ -71,6 +71,8 @@ contains
     type(nlgs_settings_t) :: ns
     type(body_input_t), allocatable :: bodies(:)
 
+    if (any(deck%bodies%model == 'MAILx')) &
+      call fatal('meshed bodies (MAILx) are read but not run yet: this build runs rigid bodies (RBDY2) only')
     sc%h = deck%run%time_step
     sc%theta = deck%run%theta
     sc%detection_frequency = max(1, deck%run%detection_frequency)

@@ -189,13 +189,13 @@ contains
                     rules(2)%ancol == 'WALLx' .and. rules(2)%behav == 'iqsdw')
     call check_close('disks_box no global alert', rules(1)%global_alert, 0.0_wp, 0.0_wp)
     ! DRV_DOF.DAT: bodies 151-154, vlocy 1..3 with RAMPI 1: 12 lines.
-    call read_drv_dof(dat('disks_box', 'DRV_DOF.DAT'), decks//'/disks_box/DATBOX', size(bodies), drv)
+    call read_drv_dof(dat('disks_box', 'DRV_DOF.DAT'), decks//'/disks_box/DATBOX', drv, bodies)
     call check_true('disks_box 12 driven dofs', size(drv) == 12)
     call check_true('disks_box first driven body 151 dof 1 vlocy', drv(1)%body == 151 .and. drv(1)%dof == 1 &
                     .and. drv(1)%kind == 'vlocy')
     call check_close('disks_box RAMPI', drv(1)%rampi, 1.0_wp, 0.0_wp)
     ! DOF.INI: 152 bodies; body 1 V(1)= 2.7027822e-01, V(3)= 4.4864945e+00; body 2 V(1)=-4.6004131e-02.
-    call read_dof_file(dat('disks_box', 'DOF.INI'), step, t, dof, size(bodies))
+    call read_dof_file(dat('disks_box', 'DOF.INI'), step, t, dof, bodies)
     call check_true('disks_box DOF.INI step 0', step == 0)
     call check_true('disks_box DOF.INI 152 records', size(dof) == 152)
     call close_rel('disks_box DOF.INI body 1 V(1)', dof(1)%v(1), 2.7027822e-1_wp, 1e-12_wp)
@@ -209,7 +209,7 @@ contains
     type(see_rule_input_t), allocatable :: rules(:)
     ! DRV_DOF.DAT: body 1 'force 1 evolution force_x.dat', 'vlocy 3' RAMPI 1; body 2 vlocy 1-3.
     ! force_x.dat: (0,0) (0.2,0) (0.6,300) (1,300) (1.2,0) (3,0).
-    call read_drv_dof(dat('driven_evolution', 'DRV_DOF.DAT'), decks//'/driven_evolution/DATBOX', 2, drv)
+    call read_drv_dof(dat('driven_evolution', 'DRV_DOF.DAT'), decks//'/driven_evolution/DATBOX', drv)
     call check_true('driven_evolution 5 driven dofs', size(drv) == 5)
     call check_true('driven_evolution force dof 1 evolution', drv(1)%kind == 'force' .and. drv(1)%dof == 1 &
                     .and. drv(1)%evolution)
@@ -237,7 +237,7 @@ contains
     call check_true('drum 98 bodies', size(bodies) == 98)
     call check_true('drum 1 xKSID', count_kind(bodies, 'xKSID') == 1 .and. bodies(98)%tactors(1)%kind == 'xKSID')
     call close_rel('drum xKSID radius', bodies(98)%tactors(1)%radius, 0.11_wp, 1e-12_wp)
-    call read_drv_dof(dat('drum', 'DRV_DOF.DAT'), decks//'/drum/DATBOX', size(bodies), drv)
+    call read_drv_dof(dat('drum', 'DRV_DOF.DAT'), decks//'/drum/DATBOX', drv, bodies)
     call check_true('drum 3 driven dofs of body 98', size(drv) == 3 .and. all(drv%body == 98))
     call check_close('drum vlocy 3 CT', drv(3)%ct, 1.0_wp, 0.0_wp)
   end subroutine test_drum
@@ -305,7 +305,7 @@ contains
     call check_close('RST_CLB restn', laws(4)%params(1), 0.3_wp, 1e-15_wp)
     call check_close('RST_CLB fric', laws(4)%params(3), 0.5_wp, 1e-15_wp)
     ! DOF.INI: body 1 X(3)= 7.8539816e-01 (rotated square), body 15 X(3)=-1.5707963e+00.
-    call read_dof_file(dat('mixed_disk_polygon', 'DOF.INI'), step, t, dof, size(bodies))
+    call read_dof_file(dat('mixed_disk_polygon', 'DOF.INI'), step, t, dof, bodies)
     call check_true('mixed DOF.INI 3 records', size(dof) == 3)
     call close_rel('mixed body 1 rotation', dof(1)%x(3), 7.8539816e-1_wp, 1e-12_wp)
     call check_true('mixed second record is body 15', dof(2)%body == 15)
