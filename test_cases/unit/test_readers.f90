@@ -69,6 +69,7 @@ program test_readers
       call round_trip_gpv(trim(mesh_cases(ic)), n)
     end do
   end do
+  call test_plalp_layout()
   call test_valid_minimal()
   call test_finish()
 
@@ -609,6 +610,49 @@ contains
     call check_close('plastic bar: newton_tolerance', deck%run%newton_tolerance, 1.0e-6_wp, 0.0_wp)
     call check_true('t3 pair: 1000 steps', deck%run%number_of_steps == 1000)
   end subroutine test_mesh_decks
+
+  !> PLALp (polygon vertex on a mesh polyline): no LMGC90 file of this type in
+  !> the fixtures, so the id line is checked against the layout of LMGC90's
+  !> PLALp writer (1X,A5,2X,I5,2X,A5,2X,I5,2X,A5,2X,I5,2X,A5,2X,A5,2X,I5,2X,A5,
+  !> 2X,I5,2X,I5,9X,A5,1X,I5: vertex after 'CDVER', segment without a label),
+  !> then read back.
+  subroutine test_plalp_layout()
+    type(contact_record_t) :: r(1)
+    type(contact_record_t), allocatable :: b(:)
+    character(len=103) :: expected
+    character(len=:), allocatable :: f, text
+    real(wp) :: t
+    integer :: step, k, line_start, nl
+    r(1)%inter = 'PLALp'
+    r(1)%number = 1
+    r(1)%cdbdy = 'RBDY2'; r(1)%icdbdy = 3; r(1)%cdtac = 'POLYG'; r(1)%icdtac = 1; r(1)%cdver = 4
+    r(1)%behav = 'gapc3'
+    r(1)%anbdy = 'MAILx'; r(1)%ianbdy = 2; r(1)%antac = 'ALpxx'; r(1)%iantac = 1; r(1)%anseg = 7
+    r(1)%status = 'slifw'; r(1)%iadj = 2
+    r(1)%rln = 12.5_wp
+    allocate (r(1)%internals(0))
+    write (expected, '(1X,A5,2X,I5,2X,A5,2X,I5,2X,A5,2X,I5,2X,A5,2X,A5,2X,I5,2X,A5,2X,I5,2X,I5,9X,A5,1X,I5)') &
+      'RBDY2', 3, 'POLYG', 1, 'CDVER', 4, 'gapc3', 'MAILx', 2, 'ALpxx', 1, 7, 'slifw', 2
+    f = tmp//'_plalp'
+    call write_vloc_rloc_file(f, 5, 0.5_wp, r)
+    text = slurp(f)
+    ! The id line is line 9 (5 header lines, the rule, $icdan, the column header).
+    line_start = 1
+    nl = 0
+    do k = 1, len(text)
+      if (text(k:k) == achar(10)) then
+        nl = nl + 1
+        if (nl == 8) line_start = k + 1
+        if (nl == 9) exit
+      end if
+    end do
+    call check_true('PLALp id line in LMGC90 layout', text(line_start:k - 1) == expected)
+    call read_vloc_rloc_file(f, step, t, b)
+    call check_true('PLALp read back', size(b) == 1 .and. b(1)%cdver == 4 .and. b(1)%anseg == 7 .and. &
+                    b(1)%status == 'slifw' .and. b(1)%iadj == 2 .and. b(1)%ianbdy == 2 .and. b(1)%anbdy == 'MAILx')
+    call check_close('PLALp rln read back', b(1)%rln, 12.5_wp, 0.0_wp)
+    call remove_file(f)
+  end subroutine test_plalp_layout
 
   !> The deck test_cases/broken/valid_minimal reads through read_deck.
   subroutine test_valid_minimal()
