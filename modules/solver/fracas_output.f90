@@ -7,13 +7,16 @@ module fracas_output
   use fracas_errors, only: fatal
   use fracas_ids, only: inter_names, status_names, n_inter, bm_rigid, bm_mesh
   use fracas_files, only: make_dir, file_exists
-  use fracas_deck, only: dof_record_t, contact_record_t
+  use fracas_deck, only: dof_record_t, contact_record_t, gpv_record_t
   use fracas_vtk, only: vtk_field, write_vtu, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_vertex
   use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc
   use fracas_scene, only: scene_t, step_report_t
   use fracas_version, only: version_string
   use fracas_contact_laws, only: law_czm
-  use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file
+  use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file, write_gpv_file
+  use fracas_mailx, only: mailx_gauss_values
+  use fracas_elements, only: el_ngauss_gpv, el_name
+  use fracas_bulk, only: bulk_j2, gp_sxx, gp_szz, gp_ezz, gp_pxx, gp_pzz, gp_p
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close
   implicit none
@@ -21,12 +24,13 @@ module fracas_output
   public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
             output_close, series_names
 
-  integer, parameter :: n_series = 23
+  integer, parameter :: n_series = 26
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
     'step', 'time', 'contacts', 'active_contacts', 'sweeps', 'converged', 'residual_natural_map', &
     'residual_onepq', 'quad_dv', 'maxm_dv', 'mean_dvor', 'kinetic_energy', 'work_gravity', &
     'work_forces', 'work_supports', 'dissipated', 'cohesive_energy', 'damage_dissipated', 'balance_error', &
-    'mean_overlap', 'max_overlap', 'solve_time', 'step_time']
+    'mean_overlap', 'max_overlap', 'solve_time', 'step_time', 'elastic_energy', 'plastic_work', &
+    'newton_iterations']
   integer, parameter :: n_outline = 24   !< segments of a circle outline
 
   type :: output_t
@@ -244,6 +248,7 @@ contains
       end do
     end associate
     call write_dof_file(o%outbox//'/DOF.OUT.'//trim(num), sc%step, sc%time, dofs)
+    if (sc%meshes%n > 0) call write_gpv_file(o%outbox//'/GPV.OUT.'//trim(num), sc%step, sc%time, gpv_records(sc))
     ! LMGC90 lists interactions type by type, numbered within their type.
     allocate (recs(sc%contacts%n))
     per_type = 0
@@ -293,6 +298,48 @@ contains
     call write_vloc_rloc_file(o%outbox//'/Vloc_Rloc.OUT.'//trim(num), sc%step, sc%time, recs)
   end subroutine output_outbox
 
+  !> Gauss-point values of every element as LMGC90 writes them in GPV.OUT:
+  !> small strain, per Gauss point the stress (xx, yy, xy, zz) and the strain
+  !> (xx, yy, 2 xy, zz); J2 elements add a line of six internals, the
+  !> small-strain counterpart of LMGC90's (plastic strain xx, yy, 2 xy, zz
+  !> where LMGC90 writes Cp^-1, then p and the von Mises stress). T3 has one
+  !> Gauss point, printed three times as LMGC90 does.
+  function gpv_records(sc) result(recs)
+    type(scene_t), intent(in) :: sc
+    type(gpv_record_t), allocatable :: recs(:)
+    real(wp), allocatable :: gp(:, :)
+    integer :: b, e, g, ng, np, g0
+    associate (ms => sc%meshes)
+    allocate (gp(size(ms%gp, 1), size(ms%gp, 2)))
+    call mailx_gauss_values(ms, gp)
+    allocate (recs(ms%nelem))
+    do b = 1, ms%n
+      do e = ms%elem_first(b), ms%elem_first(b + 1) - 1
+        associate (r => recs(e))
+          r%body = b
+          r%element = e - ms%elem_first(b) + 1
+          r%kind = el_name(ms%el_kind(e))
+          ng = ms%el_gp(e + 1) - ms%el_gp(e)
+          np = el_ngauss_gpv(ms%el_kind(e))
+          allocate (r%values(merge(14, 8, ms%mats(ms%el_mat(e))%law == bulk_j2), np))
+          do g = 1, np
+            g0 = ms%el_gp(e) + min(g, ng) - 1
+            r%values(1:8, g) = gp(gp_sxx:gp_ezz, g0)
+            if (size(r%values, 1) == 14) r%values(9:14, g) = [gp(gp_pxx:gp_pzz, g0), gp(gp_p, g0), &
+                                                              von_mises(gp(gp_sxx:gp_szz, g0))]
+          end do
+        end associate
+      end do
+    end do
+    end associate
+  end function gpv_records
+
+  !> Von Mises equivalent stress of a stress (xx, yy, xy, zz).
+  pure real(wp) function von_mises(s)
+    real(wp), intent(in) :: s(4)
+    von_mises = sqrt(0.5_wp * ((s(1) - s(2))**2 + (s(2) - s(4))**2 + (s(4) - s(1))**2) + 3.0_wp * s(3)**2)
+  end function von_mises
+
   !> One snapshot of bodies and contacts in OUTBOX/fracas.h5.
   subroutine output_snapshot(o, sc)
     type(output_t), intent(inout) :: o
@@ -321,16 +368,22 @@ contains
     type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
     type(step_report_t), intent(in) :: rep
-    real(wp) :: balance
+    real(wp) :: balance, wgrav, wforces, wsupports
     if (.not. o%h5_open) return
-    balance = rep%kinetic + sc%cohesive_energy - sc%kinetic0 - &
-              (sc%work_gravity + sc%work_forces + sc%work_supports - sc%dissipated)
+    ! Rigid and meshed bodies together (kinetic0 holds the initial kinetic and
+    ! elastic energy; meshes add their strain energy and plastic work).
+    wgrav = sc%work_gravity + sc%meshes%work_gravity
+    wforces = sc%work_forces + sc%meshes%work_forces
+    wsupports = sc%work_supports + sc%meshes%work_supports
+    balance = rep%kinetic + sc%meshes%elastic + sc%meshes%plastic_work + sc%cohesive_energy - sc%kinetic0 - &
+              (wgrav + wforces + wsupports - sc%dissipated)
     call results_append_step(o%h5, [real(sc%step, wp), sc%time, real(rep%contacts, wp), &
       real(rep%nlgs%nactive, wp), real(rep%nlgs%sweeps, wp), merge(1.0_wp, 0.0_wp, rep%nlgs%converged), &
       rep%nlgs%residual, rep%nlgs%residual_onepq, rep%nlgs%quad_dv, rep%nlgs%maxm_dv, rep%nlgs%mean_dvor, &
-      rep%kinetic, sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, sc%cohesive_energy, &
+      rep%kinetic, wgrav, wforces, wsupports, sc%dissipated, sc%cohesive_energy, &
       sc%damage_dissipated, balance, &
-      rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds])
+      rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
+      sc%meshes%plastic_work, real(rep%newton_iterations, wp)])
   end subroutine output_series
 
   !> 1 for the contacts of a cohesive law whose interface is broken (beta = 0).
