@@ -527,6 +527,9 @@ COMMAND_KEYWORDS = {
     "output_vtk_every": int,
     "output_hdf5_every": int,
     "progress_every": int,
+    "nlgs_unconverged": ("warn", "fail", "stop"),
+    "output_vtk_disks": ("points", "polygons"),
+    "output_vtk_precision": ("single", "double"),
 }
 
 _POSITIVE = {"time_step", "number_of_steps", "final_time", "detection_frequency",
