@@ -5,6 +5,7 @@
     fracas_tools.mailx       meshed (MAILx) bodies, CLxxx/ALpxx contactors, MODELS.DAT models
     fracas_tools.outbox      DOF / GPV / Vloc_Rloc files (.INI and .OUT.n), read and written
     fracas_tools.postpro_deck  POSTPRO.DAT commands (node sets of meshes)
+    fracas_tools.mesh        gmsh meshes (.geo, .msh, API) -> MAILx bodies, exploded meshes
     fracas_tools.generators  seeded generators: disk deposits, polygons, walls, masonry, arches
     fracas_tools.post        read OUTBOX/fracas.h5, micro-mechanics, plots, report
     fracas_tools.synthetic   a synthetic fracas.h5 with the documented layout (tests, demos)

@@ -146,8 +146,10 @@ class MeshBody:
     """A MAILx body. ``nodes`` (n, 2) reference coordinates; node numbers in
     elements, contactors and driven dofs are 1-based. ``x0``/``v0`` (n, 2): initial
     displacement and velocity per node (DOF.INI, written when one is non-zero).
-    ``driven``: DrivenDof objects with their ``node``. ``groups``: named node sets
-    (not written to any file; used to drive or post-process node sets)."""
+    ``driven``: DrivenDof objects with their ``node``. ``groups``: named node sets;
+    ``edge_groups``: named lists of boundary edges (noda, nodb), walked with the
+    body on the right (both filled by fracas_tools.mesh from gmsh's physical
+    groups; not written to any file)."""
 
     model = "MAILx"
 
@@ -165,6 +167,7 @@ class MeshBody:
         self.v0 = np.zeros_like(v)
         self.driven = []
         self.groups = {}
+        self.edge_groups = {}
         self.number = None
 
     # -- geometry --
@@ -225,6 +228,59 @@ class MeshBody:
         self._check_nodes(c.node_numbers())
         self.contactors.append(c)
         return c
+
+    def _group_edges(self, group):
+        if group not in self.edge_groups:
+            raise ValueError(f"MAILx {self.number}: no edge group {group!r} "
+                             f"(edge groups: {', '.join(self.edge_groups) or 'none'})")
+        return list(self.edge_groups[group])
+
+    def _chains(self, group):
+        """The edges of an edge group joined into maximal polylines (walked in
+        their direction; a closed loop ends on its first node), in group order."""
+        edges = self._group_edges(group)
+        nxt = {}
+        ends = set()
+        for a, b in edges:
+            if a in nxt:
+                raise ValueError(f"edge group {group!r} branches at node {a}")
+            nxt[a] = b
+            ends.add(b)
+        used, chains = set(), []
+        starts = [a for a, _ in edges if a not in ends] + [a for a, _ in edges]
+        for a in starts:
+            if a in used or a not in nxt:
+                continue
+            chain = [a]
+            while chain[-1] in nxt and chain[-1] not in used:
+                used.add(chain[-1])
+                chain.append(nxt[chain[-1]])
+            chains.append(chain)
+        return chains
+
+    def add_polyline_on(self, group, color="BLEUx"):
+        """ALpxx polylines along an edge group (one per connected piece), walked
+        with the body on the right as LMGC90 does. Returns them."""
+        return [self.add_polyline(c, color) for c in self._chains(group)]
+
+    def add_candidates_on(self, group, color="BLEUx", apab=(0.25, 0.75)):
+        """One CLxxx contactor with points at ``apab`` on every edge of an edge
+        group, in group order, each edge walked with the body on the right.
+        apab='nodes' puts one point on each node of the group instead: apab 0 at
+        each edge's noda, and apab 1 at an nodb that starts no edge (the end of an
+        open piece), right after its edge's point (pylmgc90's layout)."""
+        edges = self._group_edges(group)
+        if apab == "nodes":
+            starts = {a for a, _ in edges}
+            pts, done = [], set()
+            for a, b in edges:
+                pts.append((a, b, 0.0))
+                if b not in starts and b not in done:
+                    pts.append((a, b, 1.0))
+                    done.add(b)
+        else:
+            pts = [(a, b, float(s)) for a, b in edges for s in apab]
+        return self.add_candidates(pts, color)
 
     def tactors(self):
         """The contactors as LMGC90 numbers them (rank k+1 = item k): a list of

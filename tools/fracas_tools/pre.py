@@ -610,10 +610,16 @@ COMMAND_KEYWORDS = {
     "output_vtk_every": int,
     "output_hdf5_every": int,
     "progress_every": int,
+    # meshed bodies
+    "plane": ("strain", "stress"),
+    "newton_tolerance": float,
+    "newton_max_iterations": int,
+    "linear_solver": ("auto", "dense", "cholmod"),
 }
 
 _POSITIVE = {"time_step", "number_of_steps", "final_time", "detection_frequency",
-             "nlgs_tolerance", "nlgs_sweeps_per_check", "nlgs_max_checks"}
+             "nlgs_tolerance", "nlgs_sweeps_per_check", "nlgs_max_checks",
+             "newton_tolerance", "newton_max_iterations"}
 _NONNEGATIVE = {"output_dof_every", "output_vtk_every", "output_hdf5_every", "progress_every"}
 
 
@@ -830,6 +836,23 @@ class Case:
                 e = Element(kinds.get(len(e), "?"), e, model, material)
             b.add_element(e)
         return self.append(b)
+
+    def add_mesh(self, mesh, material, model=None, bodies=None):
+        """MAILx bodies from a mesh.Mesh2D (e.g. mesh.mesh_geo('part.geo')): one
+        body per connected part of each physical surface (or per group of phases in
+        ``bodies``); ``material``/``model`` a nickname or {phase: nickname}; model
+        None adds default models M2DT3/M2DQ4/M2DT6/M2DQ8. Physical curves and points
+        become body.groups / body.edge_groups. Returns the list of bodies."""
+        from .mesh import build_bodies
+        return build_bodies(self, mesh, material, model, bodies)
+
+    def add_exploded_mesh(self, mesh, material, model=None, **options):
+        """One MAILx body per element of a mesh.Mesh2D, every shared edge glued by a
+        CLxxx/ALpxx pair coloured by its interface family; see mesh.explode for
+        the options (apab, cracks, color, boundary_color, group_copies). Returns a
+        mesh.Exploded (bodies, families, counts)."""
+        from .mesh import explode
+        return explode(self, mesh, material, model, **options)
 
     def add_disk(self, center, radius, material, color="BLEUx"):
         """A rigid disk (DISKx) centred at ``center``."""
