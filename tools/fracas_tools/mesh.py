@@ -17,7 +17,7 @@ Python API; gmsh reads the files) or from arrays.
                                    cracks=["notch"])
     parts.impose_velocity("bottom", (1, 2))       # a physical curve, all its node copies
     for family, color in parts.families.items():  # one cohesive law per interface family
-        case.add_see("CLxxx", color, "ALpxx", color, law_of[family], 1e-4, "MAILx", "MAILx")
+        case.add_see("CLxxx", color, "ALpxx", color, law_of[family], 1e-4)
 
 :meth:`fracas_tools.Case.add_mesh` makes one MAILx body per connected part of each
 physical surface (or per group of phases the user gives) instead.
@@ -482,7 +482,7 @@ class Exploded:
                 law = laws.get(fam, laws.get(fam[::-1], laws.get(color)))
                 if law is None:
                     raise ValueError(f"no law for interface family {fam} ({color})")
-            case.add_see("CLxxx", color, "ALpxx", color, law, alert, cdbdy="MAILx", anbdy="MAILx")
+            case.add_see("CLxxx", color, "ALpxx", color, law, alert)
 
 
 def explode(case, mesh, material, model=None, apab=(0.25, 0.75), cracks=(), color=None,

@@ -781,10 +781,15 @@ class Case:
         self.laws[name] = c
         return c
 
-    def add_see(self, cdtac, cdcol, antac, ancol, law, alert, cdbdy="RBDY2", anbdy="RBDY2",
+    def add_see(self, cdtac, cdcol, antac, ancol, law, alert, cdbdy=None, anbdy=None,
                 global_alert=None):
         """Candidate contactors (cdtac, cdcol) see antagonists (antac, ancol) through
-        contact law ``law`` (name or ContactLaw) within distance ``alert``."""
+        contact law ``law`` (name or ContactLaw) within distance ``alert``. The body
+        models default to MAILx for CLxxx/ALpxx contactors, RBDY2 otherwise."""
+        def model_of(tac):
+            return "MAILx" if tac in ("CLxxx", "ALpxx") else "RBDY2"
+        cdbdy = cdbdy or model_of(cdtac)
+        anbdy = anbdy or model_of(antac)
         name = law.name if isinstance(law, ContactLaw) else law
         r = SeeRule(cdtac, cdcol, name, antac, ancol, alert, cdbdy, anbdy, global_alert)
         self.see_rules.append(r)
@@ -1120,7 +1125,7 @@ class Case:
                                            for m in self.materials.values()),
                  *([ "models: " + ", ".join(f"{m.name} ({m.element})" for m in self.models.values())]
                    if self.models else []),
-                 *[b.summary() for b in self.mesh_bodies()],
+                 *self._mesh_summary(),
                  "laws: " + ", ".join(f"{l.name} {l.law} " +
                                       " ".join(f"{k}={v:g}" for k, v in l.params.items())
                                       for l in self.laws.values()),
@@ -1130,6 +1135,18 @@ class Case:
                  f"{sum(1 for b in self.bodies if np.any(b.x0 != 0) or np.any(b.v0 != 0))}",
                  "run: " + (", ".join(f"{k}={v}" for k, v in self.run.values.items()) or "(none)")]
         return "\n".join(lines)
+
+    def _mesh_summary(self):
+        meshes = self.mesh_bodies()
+        if not meshes:
+            return []
+        kinds = {}
+        for b in meshes:
+            for e in b.elements:
+                kinds[e.kind] = kinds.get(e.kind, 0) + 1
+        return [f"MAILx: {len(meshes)} bodies, {sum(b.n_nodes for b in meshes)} nodes, "
+                + ", ".join(f"{n} {k}" for k, n in kinds.items())
+                + f", {sum(len(b.tactors()) for b in meshes)} contactors"]
 
     def __repr__(self):
         return (f"Case({len(self.bodies)} bodies, {len(self.materials)} materials, "

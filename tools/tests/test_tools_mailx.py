@@ -160,7 +160,7 @@ def mesh_case():
     b.x0[3] = (1e-3, -2e-3)
     c.add_law("gapc3", "GAP_SGR_CLB", fric=0.3)
     c.add_law("macz_", "MAC_CZM", dyfr=0.3, stfr=0.3, cn=1e11, ct=1e11, b=0.0, w=10.0)
-    c.add_see("CLxxx", "BLEUx", "JONCx", "WALLx", "gapc3", 5e-3, cdbdy="MAILx")
+    c.add_see("CLxxx", "BLEUx", "JONCx", "WALLx", "gapc3", 5e-3)       # body models from the contactors
     c.add_see("CLxxx", "BLEUx", "ALpxx", "GLUEx", "macz_", 1e-3, cdbdy="MAILx", anbdy="MAILx")
     c.postpro = PostPro()
     c.postpro.add("NEW MECAx SETS", rows=mecax_set_rows([[(1, [1, 4])], [(1, [2]), (2, [9, 10])]]))
@@ -198,6 +198,7 @@ def test_mesh_case_round_trip(tmp_path):
     assert r.models["M2DQ8"].options["form_"] == "UpdtL"
     assert r.postpro.get("NEW MECAx SETS").mecax_sets() == [[(1, [1, 4])], [(1, [2]), (2, [9, 10])]]
     assert r.postpro.get("Dep EVOLUTION").step == 10
+    assert [(s.cdbdy, s.anbdy) for s in r.see_rules] == [("MAILx", "RBDY2"), ("MAILx", "MAILx")]
     text = (tmp_path / "a" / "DATBOX" / "BODIES.DAT").read_text().splitlines()
     assert " Q8xxx      1  nodes      1      2      3      4      5      6      7      8" in text
     assert "+CLxxx      1  color  BLEUx  noda=    2  nodb=    1  apab= 7.5000000E-01" in text
