@@ -330,6 +330,10 @@ VLOC_LAYOUTS = {
     "PLJCx": (_HEAD + "  vertx  numbr  behav  anbdy  numbr  antac  numbr                sttus iadj ",
               _ID + [("'CDVER", 30, 0), ("cdver", 37, 5), ("behav", 44, 0)] + _shift(_AN, 14)
               + [("status", 93, 0), ("iadj", 98, 6)], 103),
+    # polygon vertex against an ALpxx segment (the layout of modules/io/read_vloc_rloc.f90)
+    "PLALp": (_HEAD + "  vertx  numbr  behav  anbdy  numbr  antac  numbr                sttus iadj ",
+              _ID + [("'CDVER", 30, 0), ("cdver", 37, 5), ("behav", 44, 0)] + _shift(_AN, 14)
+              + [("anseg", 79, 5), ("status", 93, 0), ("iadj", 98, 6)], 103),
     "DKPLx": (_HEAD + "  behav  anbdy  numbr  antac  numbr  vertx  numbr                sttus iadj ",
               _ID + [("behav", 30, 0)] + _AN + [("'CDVER", 65, 0), ("cdver", 72, 5),
                                                 ("status", 93, 0), ("iadj", 98, 6)], 103),

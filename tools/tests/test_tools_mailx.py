@@ -266,3 +266,19 @@ def test_mesh_reader_errors(tmp_path):
     with pytest.raises(DatboxError, match="dofs 1 and 2") as e:
         datbox.read_drv_dof(tmp_path / "DRV_DOF.DAT")
     assert e.value.line == k + 1
+
+
+def test_plalp_record_layout(tmp_path):
+    """PLALp (no LMGC90 fixture): the columns of Fracas's Fortran reader
+    (modules/io/read_vloc_rloc.f90: vertex at 37, segment at 79, status at 93)."""
+    from fracas_tools.outbox import ContactRecord, VlocRloc
+    r = ContactRecord("PLALp", 3, "RBDY2", 12, "POLYG", 1, "gapc3", "MAILx", 2, "ALpxx", 4, "stick", 1,
+                      cdver=5, anseg=7, rloc=np.array([1.0, -2.0, 0.0]), normal=np.zeros(3), coor=np.zeros(3))
+    line = r.lines()[2]
+    assert (line[8:13], line[36:41], line[43:48], line[78:83], line[92:97], line[97:103]) == \
+        ("   12", "    5", "gapc3", "    7", "stick", "     1")
+    v = VlocRloc(10, 1e-3, [r])
+    p = tmp_path / "Vloc_Rloc.OUT.1"
+    v.write(p)
+    back = read_vloc_rloc(p)
+    assert back.text() == v.text() and (back.records[0].cdver, back.records[0].anseg) == (5, 7)
