@@ -54,6 +54,8 @@ class Element:
         if len(self.nodes) != ELEMENT_NODES[self.kind]:
             raise ValueError(f"a {self.kind} element has {ELEMENT_NODES[self.kind]} nodes, "
                              f"got {len(self.nodes)}")
+        if len(set(self.nodes)) != len(self.nodes):
+            raise ValueError(f"{self.kind} element with a repeated node: {self.nodes}")
         _check_name(self.model, "model")
         _check_name(self.material, "material")
 

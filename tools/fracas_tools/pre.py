@@ -943,6 +943,19 @@ class Case:
         for m in b.model_names():
             if m not in self.models:
                 raise ValueError(f"MAILx {b.number}: model {m!r} is not defined (add_model)")
+        # as the solver's MODELS.DAT check: the model suits the element's geometry,
+        # the material law suits the model's 'mater' option
+        for e in b.elements:
+            model = self.models[e.model]
+            geometry = "Q4xxx" if model.element == "Q4P0x" else model.element
+            if geometry != e.kind:
+                raise ValueError(f"MAILx {b.number}: model {e.model!r} ({model.element}) is not for "
+                                 f"{e.kind} elements")
+            need = "ELAS_PLAS" if model.options.get("mater") == "J2iso" else "ELAS"
+            if self.materials[e.material].law != need:
+                raise ValueError(f"MAILx {b.number}: material {e.material!r} "
+                                 f"({self.materials[e.material].law}) does not suit model {e.model!r}: "
+                                 f"'mater {model.options.get('mater')}' needs an {need} material")
         seen = set()
         for d in b.driven:
             if d.dof not in (1, 2):

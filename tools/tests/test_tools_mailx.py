@@ -152,9 +152,9 @@ def mesh_case():
     a.impose_velocity([2], 2, ct=-0.01, rampi=0.0, ramp=100.0)
     # one Q8 and one T6 on a body of 10 nodes
     b = c.add_mesh_body([[0, 2], [2, 2], [2, 3], [0, 3], [1, 2], [2, 2.5], [1, 3], [0, 2.5],
-                         [3, 2], [3, 3]])
+                         [3, 2], [3, 3], [2.5, 2], [3, 2.5], [2.5, 2.5]])
     b.add_element("Q8xxx", (1, 2, 3, 4, 5, 6, 7, 8), "M2DQ8", "STEEL")
-    b.add_element(Element("T6xxx", (2, 9, 3, 9, 10, 6), "M2DT6", "STEEL"))
+    b.add_element(Element("T6xxx", (2, 9, 10, 11, 12, 13), "M2DT6", "BLOCK"))
     b.add_candidates([(1, 2, 0.0), (2, 1, 1.0)], "BLEUx")
     b.impose_force([9, 10], 1, ct=5.0)
     b.x0[3] = (1e-3, -2e-3)
@@ -192,7 +192,7 @@ def test_mesh_case_round_trip(tmp_path):
     assert [(d.node, d.dof, d.kind) for d in m1.driven] == [(1, 1, "vlocy"), (1, 2, "vlocy"),
                                                              (4, 1, "vlocy"), (4, 2, "vlocy"),
                                                              (2, 2, "vlocy")]
-    assert m2.elements[0].kind == "Q8xxx" and m2.elements[1].nodes == (2, 9, 3, 9, 10, 6)
+    assert m2.elements[0].kind == "Q8xxx" and m2.elements[1].nodes == (2, 9, 10, 11, 12, 13)
     assert [c.kind for c, _ in m1.tactors()] == ["CLxxx", "CLxxx", "ALpxx"]
     assert r.materials["STEEL"].hardening == 2e9
     assert r.models["M2DQ8"].options["form_"] == "UpdtL"
@@ -222,11 +222,21 @@ def test_mesh_checks():
     with pytest.raises(ValueError, match="RIGID"):
         c.check()
     c = mesh_case()
+    c.body("MAILx", 2).elements[1].material = "STEEL"
+    with pytest.raises(ValueError, match="mater elas_' needs an ELAS"):
+        c.check()
+    c = mesh_case()
+    c.body("MAILx", 2).elements[1].model = "M2DT3"
+    with pytest.raises(ValueError, match="not for T6xxx"):
+        c.check()
+    c = mesh_case()
     c.body("MAILx", 1).fix([2])
     with pytest.raises(ValueError, match="driven twice"):
         c.check()
     with pytest.raises(ValueError, match="nodes"):
         Element("Q4xxx", (1, 2, 3), "M2DQ4", "BLOCK")
+    with pytest.raises(ValueError, match="repeated"):
+        Element("T3xxx", (1, 2, 1), "M2DT3", "BLOCK")
     with pytest.raises(ValueError, match="outside"):
         c.body("MAILx", 1).add_polyline([1, 7])
     with pytest.raises(ValueError, match="young"):

@@ -442,3 +442,56 @@ def test_doc_example_runs(tmp_path, monkeypatch):
     assert sorted(r.cdcol for r in case.see_rules) == ["HY_HY", "HY_MA", "MA_MA"]
     assert case.run.values["plane"] == "strain"
     assert sum(len(c.points) for b in case.bodies for c in b.contactors if c.kind == "CLxxx") == 18
+
+
+def _fracas():
+    import os
+    exe = os.environ.get("FRACAS_BIN")
+    if not exe:
+        found = sorted(Path(__file__).resolve().parents[2].glob("build/*/bin/fracas"),
+                       key=lambda p: p.stat().st_mtime)
+        exe = str(found[-1]) if found else None
+    if not exe or not os.access(exe, os.X_OK):
+        pytest.skip("no built fracas binary (set FRACAS_BIN or build the project)")
+    return exe
+
+
+def test_generated_mesh_decks_pass_fracas_check(tmp_path):
+    """Decks written by fracas_tools are read by the solver's Fortran readers
+    (fracas --check): an exploded two-phase gmsh mesh with families and a notch,
+    a Q4 block from add_mesh on a rigid ground, and the T3/Q8/T6/ELAS_PLAS case of
+    test_tools_mailx."""
+    import subprocess
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from test_tools_mailx import mesh_case
+    exe = _fracas()
+    decks = []
+    mesh_case().write(tmp_path / "api")
+    decks.append(tmp_path / "api")
+    c = elastic_case("BLOCK")
+    c.add_material("TDURx", 1000.0)
+    (b,) = c.add_mesh(grid(8, 4, h=0.025, kind="Q4"), "BLOCK")
+    b.add_candidates_on("bottom", "BLEUx", apab="nodes")
+    b.set_velocity(0.05, 0.0)
+    c.add_jonc((0.1, -0.01), 0.2, 0.01, "TDURx", "WALLx").fix()
+    c.add_law("gapc3", "GAP_SGR_CLB", fric=0.3)
+    c.add_see("CLxxx", "BLEUx", "JONCx", "WALLx", "gapc3", 5e-3)
+    c.run.set(time_step=1e-4, number_of_steps=10, plane="strain", linear_solver="auto")
+    c.write(tmp_path / "block")
+    decks.append(tmp_path / "block")
+    if __import__("importlib").util.find_spec("gmsh"):
+        from fracas_tools.mesh import mesh_geo
+        (tmp_path / "two.geo").write_text(TWO_PHASES_GEO)
+        c = elastic_case("MATRX", "HYDRx")
+        r = c.add_exploded_mesh(mesh_geo(tmp_path / "two.geo"), {"matrix": "MATRX", "hydride": "HYDRx"},
+                                cracks=["notch"])
+        r.fix("bottom")
+        r.impose_velocity("top", 2, ct=1e-3)
+        c.add_law("czmxx", "MAC_CZM", dyfr=0.3, stfr=0.3, cn=1e13, ct=1e13, b=0.0, w=10.0)
+        r.add_see(c, "czmxx", 1e-3)
+        c.run.set(time_step=1e-6, number_of_steps=10, plane="strain")
+        c.write(tmp_path / "exploded")
+        decks.append(tmp_path / "exploded")
+    for d in decks:
+        p = subprocess.run([exe, "--check", str(d)], capture_output=True, text=True, timeout=60)
+        assert p.returncode == 0 and "check: OK" in p.stdout, (d.name, p.stdout + p.stderr)
