@@ -13,8 +13,8 @@
 !>   R(V) = h Fext_θ - M (V - Vb) - h ((1-θ) Fi_b + θ Fi(X(V)))
 !> and A = M + h²θ² K_t (K_t the tangent stiffness at X(V)), an iteration is
 !> V <- V_free + A_ff⁻¹ r, V_free = V + A_ff⁻¹ R(V), on the free dofs; a
-!> velocity-driven dof holds its imposed end-of-step value throughout, and
-!> starts the step from its previous velocity (as LMGC90).
+!> velocity-driven dof holds its imposed end-of-step value throughout and
+!> starts the step at its imposed value (run control driven_start).
 module fracas_mailx
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, input_error
@@ -94,6 +94,7 @@ module fracas_mailx
     real(wp) :: kinetic0 = 0.0_wp, elastic = 0.0_wp, plastic_work = 0.0_wp
     real(wp) :: work_gravity = 0.0_wp, work_forces = 0.0_wp, work_supports = 0.0_wp
     integer :: iterations = 0                  !< Newton iterations of the last step
+    logical :: driven_start_imposed = .true.   !< a driven dof starts a step at its imposed value
   end type mailx_t
 
 contains
@@ -112,6 +113,7 @@ contains
     m%gravity = deck%gravity(1:2)
     m%plane = merge(plane_stress, plane_strain, deck%run%plane == 'stress')
     m%method = trim(deck%run%linear_solver)
+    m%driven_start_imposed = deck%run%driven_start == 'imposed'
     m%n = count(deck%bodies%model == 'MAILx')
     allocate (m%node_first(m%n + 1), m%elem_first(m%n + 1))
     nn = 0; ne = 0; nel_nodes = 0; ng = 0; b = 0
@@ -581,6 +583,11 @@ contains
     do b = 1, m%n
       g = spread(m%gravity, 2, m%node_first(b + 1) - m%node_first(b))
       call body_m_times(m, b, g, m%fext(:, m%node_first(b):m%node_first(b + 1) - 1))
+    end do
+    do k = 1, size(m%drives)
+      associate (d => m%drives(k))
+        if (d%is_velocity .and. m%driven_start_imposed) m%vbegin(d%dof, d%body) = drive_value(d, t)
+      end associate
     end do
     m%v = m%vbegin
     do k = 1, size(m%drives)

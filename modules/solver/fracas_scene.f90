@@ -117,6 +117,7 @@ contains
       end associate
     end do
     call rbdy2_init(sc%bodies, number, ref, mass, inertia, avrd, deck%gravity(1:2))
+    sc%bodies%driven_start_imposed = deck%run%driven_start == 'imposed'
     do k = 1, size(deck%driven)
       if (deck%driven(k)%model /= 'MAILx') call rbdy2_add_drive(sc%bodies, deck%driven(k))
     end do
