@@ -644,10 +644,16 @@ contains
       if (.not. allocated(solver%mv)) allocate (solver%mv(max(total, 16)))
       do bm = 1, m%n
         if (solver%moff(bm) < 0) cycle
-        set = mailx_contact_set(m, bm)
-        do j = 1, size(set)
-          solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, set(j))
-        end do
+        if (m%dense(bm)) then      ! the contact set is all the body's nodes, in order
+          j = m%node_first(bm + 1) - m%node_first(bm)
+          solver%mv(solver%moff(bm) + 1:solver%moff(bm) + 2 * j) = &
+            reshape(m%vfree(:, m%node_first(bm):m%node_first(bm + 1) - 1), [2 * j])
+        else
+          set = mailx_contact_set(m, bm)
+          do j = 1, size(set)
+            solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, set(j))
+          end do
+        end if
       end do
       k = n
       if (allocated(solver%gidx)) then
