@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install the Debian packages Fracas needs, if any is missing (as root, or via sudo).
 set -euo pipefail
-packages=(gfortran gcc cmake make liblapack-dev libhdf5-dev python3 python3-numpy python3-h5py
+packages=(gfortran gcc cmake make liblapack-dev libhdf5-dev libsuitesparse-dev libmetis-dev python3 python3-numpy python3-h5py
           python3-matplotlib python3-pytest)
 missing=()
 for p in "${packages[@]}"; do
