@@ -27,6 +27,7 @@
 !>   el_mass(kind, x, rho, lumped, m)
 !>   el_response(kind, x, u, mat, plane, gp_begin, gp_end, fi, ke, want_tangent,
 !>               elastic_energy, plastic_work)
+!> gp_size (Gauss-point state length) is passed on from fracas_bulk.
 module fracas_elements
   use fracas_kinds, only: wp
   use fracas_bulk, only: bulk_t, bulk_update, bulk_plastic_work, gp_size, gp_stress, gp_strain, &
@@ -36,7 +37,7 @@ module fracas_elements
   public :: el_t3, el_q4, el_t6, el_q8, el_q4p0, el_max_nodes, el_max_dofs, el_max_gauss, &
             el_kind_of, el_nnodes, el_ngauss, el_ngauss_gpv, el_nedges, el_edges, el_edge_midnodes, &
             el_vtk_type, el_vtk_order, el_shape, el_gauss_rule, el_gauss_points_xy, el_area, &
-            el_geometry_ok, el_mass, el_response
+            el_geometry_ok, el_mass, el_response, gp_size
 
   integer, parameter :: el_t3 = 1, el_q4 = 2, el_t6 = 3, el_q8 = 4, el_q4p0 = 5
   integer, parameter :: el_max_nodes = 8, el_max_dofs = 16, el_max_gauss = 9
