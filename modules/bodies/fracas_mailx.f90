@@ -18,10 +18,10 @@
 module fracas_mailx
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, input_error
-  use fracas_deck, only: deck_t, element_input_t, model_input_t, material_input_t
+  use fracas_deck, only: deck_t, element_input_t, model_input_t
   use fracas_drives, only: drive_t, drive_from_input, drive_value
-  use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, gp_size
-  use fracas_bulk, only: bulk_t, bulk_elastic, bulk_j2, plane_strain, plane_stress
+  use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response
+  use fracas_bulk, only: bulk_t, bulk_j2, plane_strain, plane_stress, gp_size, bulk_from_material
   use fracas_sparse, only: sparse_t, sparse_from_triplets, sparse_matvec
   use fracas_linear_solver, only: factor_t, factor_build, factor_update, factor_solve, factor_free, &
                                   factor_method_name, dense_spd_inverse
@@ -29,7 +29,7 @@ module fracas_mailx
   private
   public :: mailx_t, mailx_build, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
-            mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_solver_summary, &
+            mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_solver_summary, &
             mailx_dense_max, mailx_gauss_values
 
   !> Bodies with at most this many dofs keep a dense inverse of A_ff (exploded
@@ -105,6 +105,7 @@ contains
     type(mailx_t), intent(out) :: m
     real(wp), intent(in) :: h, theta
     integer :: ib, b, nn, ne, ie, k, j, nel_nodes, ng, imat, kind, node
+    logical, allocatable :: used(:)
     m%h = h
     m%theta = theta
     m%time = deck%dof_time
@@ -141,10 +142,9 @@ contains
     m%driven = .false.
     m%gp = 0.0_wp
     m%fext = 0.0_wp; m%fint = 0.0_wp; m%res = 0.0_wp; m%imp = 0.0_wp; m%fsupport = 0.0_wp
-    allocate (m%mats(size(deck%materials)))
-    do k = 1, size(deck%materials)
-      m%mats(k) = bulk_from_input(deck%materials(k))
-    end do
+    ! Bulk laws of the materials meshes use (others may be RIGID).
+    allocate (m%mats(size(deck%materials)), used(size(deck%materials)))
+    used = .false.
     b = 0
     ne = 0
     m%el_first(1) = 1
@@ -167,12 +167,12 @@ contains
             end do
             if (imat == 0) call input_error(el%src%file, el%src%line, 37, "material '"//el%behav// &
               "' is not defined in BULK_BEHAV.DAT")
-            if (m%mats(imat)%kind == 0) call input_error(el%src%file, el%src%line, 37, "material '"//el%behav// &
-              "' is not a bulk law for meshes (ELAS or ELAS_PLAS)")
+            if (.not. used(imat)) m%mats(imat) = bulk_from_material(deck%materials(imat))
+            used(imat) = .true.
             m%el_mat(ne) = imat
             k = model_index(deck%models, el%model)
             if (deck%models(k)%mass_storage == 'coher') m%lumped(b) = .false.
-            if (m%mats(imat)%kind == bulk_j2) m%nonlinear(b) = .true.
+            if (m%mats(imat)%law == bulk_j2) m%nonlinear(b) = .true.
             if (size(el%nodes) /= el_nnodes(m%el_kind(ne))) call input_error(el%src%file, el%src%line, 16, &
               'element has the wrong number of nodes for its type')
             do j = 1, size(el%nodes)
@@ -267,24 +267,6 @@ contains
     end do
   end function model_index
 
-  !> Bulk law of a BULK_BEHAV.DAT material (kind 0: not a law for meshes).
-  function bulk_from_input(inp) result(mat)
-    type(material_input_t), intent(in) :: inp
-    type(bulk_t) :: mat
-    mat%density = inp%density
-    mat%young = inp%young
-    mat%poisson = inp%poisson
-    select case (trim(inp%law))
-    case ('ELAS')
-      mat%kind = bulk_elastic
-    case ('ELAS_PLAS')
-      mat%kind = bulk_j2
-      mat%yield0 = inp%yield0
-      mat%hardening = inp%hardening
-    case default
-      mat%kind = 0
-    end select
-  end function bulk_from_input
 
   !> Degrees of freedom of body b: 2 per node (x, y), in node order.
   pure integer function body_ndof(m, b)
@@ -513,7 +495,8 @@ contains
       end if
       m%dinv(m%dfirst(b) + 1:m%dfirst(b) + nd * nd) = 0.0_wp
       if (nf > 0) then
-        ai = dense_spd_inverse(a(fidx, fidx))
+        ai = a(fidx, fidx)
+        call dense_spd_inverse(ai)
         do j = 1, nf
           do i = 1, nf
             m%dinv(m%dfirst(b) + fidx(i) + nd * (fidx(j) - 1)) = ai(i, j)
@@ -562,7 +545,7 @@ contains
   !> x := A_ff⁻¹ x on body b (x: (2, nodes of b); driven dofs of x are ignored
   !> on input and zero on output).
   subroutine body_solve(m, b, x)
-    type(mailx_t), intent(in) :: m
+    type(mailx_t), intent(inout) :: m
     integer, intent(in) :: b
     real(wp), intent(inout) :: x(:, :)
     integer :: nd, i
@@ -575,7 +558,7 @@ contains
     else
       associate (bb => m%big(b))
         xf = pack(xv, bb%free_of > 0)
-        call factor_solve(bb%f, xf)
+        call factor_solve(m%big(b)%f, xf)
         yv = 0.0_wp
         do i = 1, nd
           if (bb%free_of(i) > 0) yv(i) = xf(bb%free_of(i))
@@ -802,6 +785,18 @@ contains
       end do
     end do
   end subroutine compliance_sets_init
+
+  !> Number of contact dofs of body b (twice the nodes of its contact set).
+  pure integer function mailx_contact_dofs(m, b) result(nd)
+    type(mailx_t), intent(in) :: m
+    integer, intent(in) :: b
+    nd = 0
+    if (m%dense(b)) then
+      nd = body_ndof(m, b)
+    else if (allocated(m%big(b)%cnodes)) then
+      nd = 2 * size(m%big(b)%cnodes)
+    end if
+  end function mailx_contact_dofs
 
   !> The contact set of body b (mesh nodes; slot s is set(s)).
   function mailx_contact_set(m, b) result(set)

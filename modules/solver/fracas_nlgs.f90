@@ -13,6 +13,7 @@ module fracas_nlgs
   use fracas_random, only: rng_t, rng_seed, rng_permute
   use fracas_rbdy2, only: rbdy2_t
   use fracas_mailx, only: mailx_t, mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, &
+                          mailx_contact_dofs, &
                           mailx_velocity_from_impulses
   use fracas_contacts, only: contacts_t
   use fracas_contact_laws, only: law_t, law_local_problem, law_czm
@@ -304,7 +305,7 @@ contains
         solver%gm(s, k) = 0
         if (side_model(c, k, s) /= bm_mesh) cycle
         solver%goff(s, k) = total
-        solver%gm(s, k) = 2 * size(mailx_contact_set(m, side_body(c, k, s)))
+        solver%gm(s, k) = mailx_contact_dofs(m, side_body(c, k, s))
         total = total + 2 * solver%gm(s, k)
       end do
     end do
