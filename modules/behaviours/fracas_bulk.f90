@@ -8,7 +8,7 @@
 !> condensed on sigma_zz = 0). See doc/mesh_mechanics.md.
 !>
 !> API
-!>   type(bulk_t): kind (bulk_elastic | bulk_j2), density, young, poisson,
+!>   type(bulk_t): law (bulk_elastic | bulk_j2), density, young, poisson,
 !>                 yield0, hardening
 !>   bulk_from_material(m)                         -> bulk_t from a BULK_BEHAV.DAT record
 !>   bulk_update(mat, plane, eps, state_begin, state_end, dtan)
@@ -42,7 +42,7 @@ module fracas_bulk
 
   !> One bulk material. Units: Pa, kg/m^3.
   type :: bulk_t
-    integer :: kind = bulk_elastic    !< bulk_elastic | bulk_j2 (0: not a law for meshes)
+    integer :: law = bulk_elastic     !< bulk_elastic | bulk_j2 (0: not a law for meshes)
     real(wp) :: density = 0.0_wp
     real(wp) :: young = 0.0_wp, poisson = 0.0_wp
     real(wp) :: yield0 = 0.0_wp       !< initial yield stress (J2)
@@ -57,7 +57,7 @@ module fracas_bulk
 contains
 
   !> The bulk law of a BULK_BEHAV.DAT record: ELAS -> elastic, ELAS_PLAS -> J2,
-  !> any other law (RIGID, ...) -> kind 0, not a law for meshes (the caller
+  !> any other law (RIGID, ...) -> law 0, not a law for meshes (the caller
   !> reports it where an element uses it). Parameters of ELAS and ELAS_PLAS are
   !> checked here (input error at the material's record).
   function bulk_from_material(m) result(mat)
@@ -65,15 +65,15 @@ contains
     type(bulk_t) :: mat
     select case (trim(m%law))
     case ('ELAS')
-      mat%kind = bulk_elastic
+      mat%law = bulk_elastic
     case ('ELAS_PLAS')
-      mat%kind = bulk_j2
+      mat%law = bulk_j2
       if (m%yield0 <= 0.0_wp) call input_error(m%src%file, m%src%line, 0, &
                                                'ELAS_PLAS '//trim(m%nickname)//': SIG0 must be > 0')
       if (m%hardening < 0.0_wp) call input_error(m%src%file, m%src%line, 0, &
                                                  'ELAS_PLAS '//trim(m%nickname)//': K___ must be >= 0')
     case default
-      mat%kind = 0
+      mat%law = 0
       return
     end select
     if (m%young <= 0.0_wp .or. m%poisson <= -1.0_wp .or. m%poisson >= 0.5_wp) &
@@ -145,7 +145,7 @@ contains
       ! Start from the elastic plane-stress eps_zz around the old plastic strain.
       e(4) = state_begin(gp_pzz) - mat%poisson / (1.0_wp - mat%poisson) * &
              (eps(1) - state_begin(gp_pxx) + eps(2) - state_begin(gp_pyy))
-      if (mat%kind == bulk_j2) then
+      if (mat%law == bulk_j2) then
         ! sigma_zz(eps_zz) is increasing (d sigma_zz / d eps_zz = dtan(4,4) > 0):
         ! Newton, kept inside the bracket of the root once one exists.
         scale = max(mat%yield0, mat%young * maxval(abs(eps(1:3))), tiny(1.0_wp))
@@ -212,7 +212,7 @@ contains
     norm_s = sqrt(s_trial(1)**2 + s_trial(2)**2 + s_trial(4)**2 + 2.0_wp * s_trial(3)**2)
     q_trial = sqrt(1.5_wp) * norm_s
     call bulk_elastic_tangent(mat, plane_strain, dtan)
-    if (mat%kind /= bulk_j2) then
+    if (mat%law /= bulk_j2) then
       sig = kb * tr * unit_m + s_trial
       return
     end if

@@ -31,7 +31,7 @@ program test_bulk_j2
   real(wp), parameter :: young = 2.0e11_wp, nu = 0.3_wp, sy0 = 2.0e8_wp
   type(bulk_t) :: steel
 
-  steel = bulk_t(kind=bulk_j2, density=7800.0_wp, young=young, poisson=nu, yield0=sy0, &
+  steel = bulk_t(law=bulk_j2, density=7800.0_wp, young=young, poisson=nu, yield0=sy0, &
                  hardening=0.1_wp * young)
   call uniaxial_stress_cycle()
   call uniaxial_strain_plane_strain()
@@ -192,7 +192,7 @@ contains
     call check_true('plane strain uniaxial stress: plastic just past yield', s1(gp_p) > 0.0_wp)
     ! mesh_plastic_bar: E 2e11, nu 0.3, SIG0 2e8, K 2e9, bar length 0.1 m, end velocity
     ! 0.05 min(1, 1000 t), dt 1e-4, theta 0.5: u_n = 2.5e-7 n^2 (n <= 10), 5e-6 (n - 5) after.
-    bar = bulk_t(kind=bulk_j2, density=7800.0_wp, young=young, poisson=nu, yield0=sy0, hardening=2.0e9_wp)
+    bar = bulk_t(law=bulk_j2, density=7800.0_wp, young=young, poisson=nu, yield0=sy0, hardening=2.0e9_wp)
     s0 = 0.0_wp
     eyy = 0.0_wp
     do n = 1, 60
@@ -231,9 +231,9 @@ contains
       call compare_fd(steel, plane, base, s0, trim(pname)//' J2 plastic (virgin)', .true.)
       base = [5.0e-3_wp, -2.5e-3_wp, 4.0e-3_wp, 0.0_wp]
       call compare_fd(steel, plane, base, plastic_start, trim(pname)//' J2 plastic (hardened)', .true.)
-      call compare_fd(bulk_t(kind=bulk_j2, young=young, poisson=nu, yield0=sy0, hardening=0.0_wp), plane, base, &
+      call compare_fd(bulk_t(law=bulk_j2, young=young, poisson=nu, yield0=sy0, hardening=0.0_wp), plane, base, &
                       plastic_start, trim(pname)//' J2 plastic, H = 0', .true.)
-      call compare_fd(bulk_t(kind=bulk_elastic, young=young, poisson=nu), plane, base, s0, &
+      call compare_fd(bulk_t(law=bulk_elastic, young=young, poisson=nu), plane, base, s0, &
                       trim(pname)//' elastic', .false.)
     end do
   end subroutine tangent_checks
@@ -269,7 +269,7 @@ contains
   subroutine plane_stress_hooke()
     type(bulk_t) :: el
     real(wp) :: s0(gp_size), s1(gp_size), dtan(4, 4), e(3), c
-    el = bulk_t(kind=bulk_elastic, density=1.0_wp, young=young, poisson=nu)
+    el = bulk_t(law=bulk_elastic, density=1.0_wp, young=young, poisson=nu)
     e = [3.0e-4_wp, -1.0e-4_wp, 2.0e-4_wp]
     s0 = 0.0_wp
     call bulk_update(el, plane_stress, [e, 0.0_wp], s0, s1, dtan)

@@ -34,8 +34,8 @@ program test_fe_elements
   integer :: kind, plane
   character(len=5), parameter :: names(5) = ['T3xxx', 'Q4xxx', 'T6xxx', 'Q8xxx', 'Q4P0x']
 
-  elastic = bulk_t(kind=bulk_elastic, density=2000.0_wp, young=1.0e9_wp, poisson=0.3_wp)
-  steel = bulk_t(kind=bulk_j2, density=7800.0_wp, young=2.0e11_wp, poisson=0.3_wp, yield0=2.0e8_wp, &
+  elastic = bulk_t(law=bulk_elastic, density=2000.0_wp, young=1.0e9_wp, poisson=0.3_wp)
+  steel = bulk_t(law=bulk_j2, density=7800.0_wp, young=2.0e11_wp, poisson=0.3_wp, yield0=2.0e8_wp, &
                  hardening=2.0e10_wp)
 
   call catalogue()

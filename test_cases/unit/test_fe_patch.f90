@@ -26,8 +26,8 @@ program test_fe_patch
   type(bulk_t) :: elastic, steel
   integer :: plane
 
-  elastic = bulk_t(kind=bulk_elastic, density=1000.0_wp, young=7.0e10_wp, poisson=0.33_wp)
-  steel = bulk_t(kind=bulk_j2, density=7800.0_wp, young=2.0e11_wp, poisson=0.3_wp, yield0=2.0e8_wp, &
+  elastic = bulk_t(law=bulk_elastic, density=1000.0_wp, young=7.0e10_wp, poisson=0.33_wp)
+  steel = bulk_t(law=bulk_j2, density=7800.0_wp, young=2.0e11_wp, poisson=0.3_wp, yield0=2.0e8_wp, &
                  hardening=2.0e9_wp)
   do plane = plane_strain, plane_stress
     call patch(el_t3, plane, .false., .true.)
