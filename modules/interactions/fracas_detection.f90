@@ -402,7 +402,7 @@ contains
     type(contacts_t), intent(inout) :: c
     real(wp), intent(in), optional :: xn(:, :)
     integer :: p, icd, ian, bcd, ban, iedge, j, nmax, seg, na, nb
-    real(wp) :: gap, normal(2), point(2), ccd(2), can(2), len, s, rigid_point(2), pcl(2)
+    real(wp) :: gap, normal(2), point(2), ccd(2), can(2), len, s, pcl(2)
     real(wp), allocatable :: pcd(:, :), pan(:, :)
     integer :: mnode(4)
     real(wp) :: mwt(4)
@@ -431,7 +431,6 @@ contains
       mwt = 0.0_wp
       if (t%model(icd) == bm_rigid) ccd = tactor_center(t, icd, q(:, bcd))
       if (t%model(ian) == bm_rigid) can = tactor_center(t, ian, q(:, ban))
-      rigid_point = huge(1.0_wp)
       select case (det%pair_inter(p))
       case (i_dkdkx)
         call dkdkx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
@@ -482,6 +481,7 @@ contains
         call point_polyline(point, xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), det%pair_alert(p), &
                             edge_normal(xn(:, na), xn(:, nb)), found, seg, s, gap, normal)
         if (found) then
+          point = point - gap * normal        ! on the antagonist, as LMGC90 reports it
           len = 0.5_wp * norm2(xn(:, nb) - xn(:, na))
           call mesh_side(1, na, nb, t%apab(icd))
           call mesh_side(3, t%nodes(t%nfirst(ian) + seg - 1), t%nodes(t%nfirst(ian) + seg), s)
@@ -491,7 +491,10 @@ contains
         na = t%nodes(t%nfirst(icd)); nb = t%nodes(t%nfirst(icd) + 1)
         pcl = cl_point(t, icd, xn)
         call dkjcx_geometry(pcl, 0.0_wp, can, q(3, ban), t%ax1(ian), t%ax2(ian), gap, normal, point)
-        point = pcl
+        normal = normal + 0.0_wp            ! no signed zeros in the outputs
+        ! The point on the wall's surface, as LMGC90 reports it.
+        point = can + dot_product(pcl - can, [cos(q(3, ban)), sin(q(3, ban))]) * [cos(q(3, ban)), sin(q(3, ban))] + &
+                t%ax2(ian) * normal
         len = 0.5_wp * norm2(xn(:, nb) - xn(:, na))
         call mesh_side(1, na, nb, t%apab(icd))
         if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
@@ -505,7 +508,6 @@ contains
           call point_segment_distance(ccd, xn(:, na), xn(:, nb), s, gap, normal, point)
           gap = gap - t%radius(icd)
           if (gap > det%pair_alert(p)) cycle
-          rigid_point = ccd - t%radius(icd) * normal
           call mesh_side(3, na, nb, s)
           call add(icd, ian, seg, seg)
         end do
@@ -517,7 +519,7 @@ contains
           call point_polyline(pcd(:, j), xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), det%pair_alert(p), &
                               vertex_normal(pcd, j), found, seg, s, gap, normal)
           if (.not. found) cycle
-          point = pcd(:, j)
+          point = pcd(:, j) - gap * normal
           call mesh_side(3, t%nodes(t%nfirst(ian) + seg - 1), t%nodes(t%nfirst(ian) + seg), s)
           call add(icd, ian, j, seg)
         end do
@@ -540,7 +542,7 @@ contains
     subroutine add(kcd, kan, cdver, anseg)
       integer, intent(in) :: kcd, kan, cdver, anseg
       integer :: k, b1, b2
-      real(wp) :: tang(2), rcd(2), ran(2), pr(2)
+      real(wp) :: tang(2), rcd(2), ran(2)
       c%n = c%n + 1
       k = c%n
       b1 = t%body(kcd); b2 = t%body(kan)
@@ -560,18 +562,15 @@ contains
       c%gap(k) = gap
       c%length(k) = len
       tang = [normal(2), -normal(1)]
-      ! Rigid sides: lever arms from the body node to the point of the shape
-      ! (the contact point unless the shape's own point is given).
-      pr = point
-      if (rigid_point(1) /= huge(1.0_wp)) pr = rigid_point
+      ! Rigid sides: lever arms from the body node to the contact point.
       c%lever(:, k) = 0.0_wp
       if (c%cdm(k) == bm_rigid) then
-        rcd = pr - q(1:2, b1)
+        rcd = point - q(1:2, b1)
         c%lever(1, k) = cross(rcd, tang)
         c%lever(2, k) = cross(rcd, normal)
       end if
       if (c%anm(k) == bm_rigid) then
-        ran = pr - q(1:2, b2)
+        ran = point - q(1:2, b2)
         c%lever(3, k) = cross(ran, tang)
         c%lever(4, k) = cross(ran, normal)
       end if

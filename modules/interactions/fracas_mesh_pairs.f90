@@ -18,8 +18,10 @@ contains
 
   !> The segment of the polyline (nodes(k) -> nodes(k+1), coordinates xn) that
   !> point p faces, with the smallest |gap| among those whose gap is within
-  !> [-|segment|, alert]; facing also requires the candidate's outward normal
+  !> [-alert, alert]; facing also requires the candidate's outward normal
   !> cd_normal to be opposed to the segment's (no test if cd_normal = 0).
+  !> A point deeper than the alert distance behind a segment is not a contact:
+  !> in a mesh, points of one element lie behind the edges of its neighbours.
   !> Returns the segment, the projection parameter s in [0, 1] along it, the
   !> gap and the segment's outward normal.
   pure subroutine point_polyline(p, xn, nodes, alert, cd_normal, found, seg, s, gap, normal)
@@ -43,7 +45,7 @@ contains
       nk = [-d(2), d(1)] / sqrt(len2)
       if (dot_product(nk, cd_normal) > 0.0_wp) cycle
       gk = dot_product(p - a, nk)
-      if (gk > alert .or. gk < -sqrt(len2)) cycle
+      if (abs(gk) > alert) cycle
       if (abs(gk) < best) then
         best = abs(gk)
         found = .true.

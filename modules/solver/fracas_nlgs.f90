@@ -684,7 +684,7 @@ contains
       p(2) = -dt * c%normal(1, k) + dn * c%normal(2, k)
       solver%bv(1:2, a) = solver%bv(1:2, a) + sgn * solver%bv(4:5, a) * p
       solver%bv(3, a) = solver%bv(3, a) + sgn * solver%bv(6, a) * &
-                        (dt * c%lever(2 * sd + 1, k) + dn * c%lever(2 * sd + 2, k))
+                        (dt * c%lever(2 * sd - 1, k) + dn * c%lever(2 * sd, k))
     end subroutine inject_rigid_side
 
     !> Velocities of the meshed bodies from the contact impulses on their nodes.

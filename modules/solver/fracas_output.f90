@@ -5,7 +5,7 @@
 module fracas_output
   use fracas_kinds, only: wp, ik
   use fracas_errors, only: fatal
-  use fracas_ids, only: inter_names, status_names, n_inter
+  use fracas_ids, only: inter_names, status_names, n_inter, bm_rigid, bm_mesh
   use fracas_files, only: make_dir, file_exists
   use fracas_deck, only: dof_record_t, contact_record_t
   use fracas_vtk, only: vtk_field, write_vtu, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_vertex
@@ -226,12 +226,23 @@ contains
     integer :: per_type(n_inter)
     o%n_out = o%n_out + 1
     write (num, '(i0)') o%n_out
-    allocate (dofs(sc%bodies%n))
+    allocate (dofs(sc%bodies%n + sc%meshes%n))
     do k = 1, sc%bodies%n
       dofs(k)%body = sc%bodies%number(k)
       dofs(k)%x = sc%bodies%x(:, k)
       dofs(k)%v = sc%bodies%v(:, k)
     end do
+    associate (ms => sc%meshes)
+      do k = 1, ms%n
+        associate (d => dofs(sc%bodies%n + k), i1 => ms%node_first(k), i2 => ms%node_first(k + 1) - 1)
+          d%model = 'MAILx'
+          d%body = k
+          d%nodes = [(it, it=1, i2 - i1 + 1)]
+          d%node_x = ms%x(:, i1:i2)
+          d%node_v = ms%v(:, i1:i2)
+        end associate
+      end do
+    end associate
     call write_dof_file(o%outbox//'/DOF.OUT.'//trim(num), sc%step, sc%time, dofs)
     ! LMGC90 lists interactions type by type, numbered within their type.
     allocate (recs(sc%contacts%n))
@@ -250,8 +261,12 @@ contains
           recs(pos)%antac = tactor_kind_name(t%kind(c%an(k)))
           recs(pos)%cdver = c%cdver(k)
           recs(pos)%anseg = c%anseg(k)
-          recs(pos)%icdbdy = sc%bodies%number(c%cdb(k))
-          recs(pos)%ianbdy = sc%bodies%number(c%anb(k))
+          recs(pos)%cdbdy = merge('MAILx', 'RBDY2', c%cdm(k) == bm_mesh)
+          recs(pos)%anbdy = merge('MAILx', 'RBDY2', c%anm(k) == bm_mesh)
+          recs(pos)%icdbdy = c%cdb(k)
+          recs(pos)%ianbdy = c%anb(k)
+          if (c%cdm(k) == bm_rigid) recs(pos)%icdbdy = sc%bodies%number(c%cdb(k))
+          if (c%anm(k) == bm_rigid) recs(pos)%ianbdy = sc%bodies%number(c%anb(k))
           recs(pos)%icdtac = t%rank(c%cd(k))
           recs(pos)%iantac = t%rank(c%an(k))
           recs(pos)%behav = sc%laws(c%law(k))%nickname
@@ -267,6 +282,8 @@ contains
           recs(pos)%has_geometry = .true.
           if (sc%laws(c%law(k))%kind == law_czm) then
             recs(pos)%internals = c%internals(:, k)
+          else if (c%cdm(k) == bm_mesh .or. c%anm(k) == bm_mesh) then
+            recs(pos)%internals = [c%length(k)]   ! LMGC90 writes the length of contacts with meshes
           else
             allocate (recs(pos)%internals(0))
           end if
