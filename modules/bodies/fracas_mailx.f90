@@ -750,21 +750,24 @@ contains
     end do
   end function elastic_energy
 
-  !> Gauss-point states at the current displacements for output (linear
-  !> bodies: computed now; nonlinear ones hold those of the last step).
-  subroutine mailx_gauss_values(m)
-    type(mailx_t), intent(inout) :: m
+  !> Gauss-point states at the current displacements, for output: computed
+  !> for linear bodies (their states are not kept during the run), the last
+  !> converged ones for nonlinear bodies.
+  subroutine mailx_gauss_values(m, gp)
+    type(mailx_t), intent(in) :: m
+    real(wp), intent(out) :: gp(:, :)
     integer :: b, ie
     real(wp), allocatable :: xe(:, :), ue(:), fi(:), ke(:, :)
     integer, allocatable :: dofs(:)
     real(wp) :: eel, wpl
+    gp = m%gp
     do b = 1, m%n
       if (m%nonlinear(b)) cycle
       do ie = m%elem_first(b), m%elem_first(b + 1) - 1
         call element_data(m, ie, b, m%x, xe, ue, dofs)
         allocate (fi(size(ue)), ke(size(ue), size(ue)))
         call el_response(m%el_kind(ie), xe, ue, m%mats(m%el_mat(ie)), m%plane, &
-                         m%gp_begin(:, m%el_gp(ie):m%el_gp(ie + 1) - 1), m%gp(:, m%el_gp(ie):m%el_gp(ie + 1) - 1), &
+                         m%gp_begin(:, m%el_gp(ie):m%el_gp(ie + 1) - 1), gp(:, m%el_gp(ie):m%el_gp(ie + 1) - 1), &
                          fi, ke, .false., eel, wpl)
         deallocate (fi, ke)
       end do

@@ -27,7 +27,6 @@
 !>   el_mass(kind, x, rho, lumped, m)
 !>   el_response(kind, x, u, mat, plane, gp_begin, gp_end, fi, ke, want_tangent,
 !>               elastic_energy, plastic_work)
-!> gp_size (Gauss-point state length) is passed on from fracas_bulk.
 module fracas_elements
   use fracas_kinds, only: wp
   use fracas_bulk, only: bulk_t, bulk_update, bulk_plastic_work, gp_size, gp_stress, gp_strain, &
@@ -37,7 +36,7 @@ module fracas_elements
   public :: el_t3, el_q4, el_t6, el_q8, el_q4p0, el_max_nodes, el_max_dofs, el_max_gauss, &
             el_kind_of, el_nnodes, el_ngauss, el_ngauss_gpv, el_nedges, el_edges, el_edge_midnodes, &
             el_vtk_type, el_vtk_order, el_shape, el_gauss_rule, el_gauss_points_xy, el_area, &
-            el_geometry_ok, el_mass, el_response, gp_size
+            el_geometry_ok, el_mass, el_response, el_name
 
   integer, parameter :: el_t3 = 1, el_q4 = 2, el_t6 = 3, el_q8 = 4, el_q4p0 = 5
   integer, parameter :: el_max_nodes = 8, el_max_dofs = 16, el_max_gauss = 9
@@ -77,6 +76,19 @@ contains
       kind = 0
     end select
   end function el_kind_of
+
+  !> The element's geometry name as BODIES.DAT and GPV.OUT write it (Q4P0x
+  !> is a model on Q4xxx geometry).
+  pure function el_name(kind) result(name)
+    integer, intent(in) :: kind
+    character(len=5) :: name
+    select case (kind)
+    case (el_t3); name = 'T3xxx'
+    case (el_t6); name = 'T6xxx'
+    case (el_q8); name = 'Q8xxx'
+    case default; name = 'Q4xxx'
+    end select
+  end function el_name
 
   pure integer function el_nnodes(kind) result(n)
     integer, intent(in) :: kind

@@ -25,6 +25,7 @@ module fracas_detection
     integer, allocatable :: cls(:)             !< class (kind, colour) of each contactor
     integer, allocatable :: rule_law(:, :)     !< (cd class, an class) -> law index, 0: none
     real(wp), allocatable :: rule_alert(:, :)  !< alert distance of that rule
+    logical, allocatable :: may_meet(:, :)     !< (class, class): some rule pairs them, either way
     real(wp) :: max_alert = 0.0_wp
     real(wp) :: rigid_median = 0.0_wp          !< median bound of disks and polygons
     logical, allocatable :: small(:)           !< binned in the cell grid (ordinary disks)
@@ -100,6 +101,16 @@ contains
         det%max_alert = max(det%max_alert, s%alert)
       end associate
     end do
+    ! The broad phase rejects most pairs (two points, two segments) at once.
+    allocate (det%may_meet(det%ncls, det%ncls))
+    do j = 1, det%ncls
+      do k = 1, det%ncls
+        det%may_meet(k, j) = (det%rule_law(k, j) /= 0 .and. inter_of(kind_of_name(cls_kind(k)), &
+                                                                    kind_of_name(cls_kind(j))) /= 0) .or. &
+                             (det%rule_law(j, k) /= 0 .and. inter_of(kind_of_name(cls_kind(j)), &
+                                                                    kind_of_name(cls_kind(k))) /= 0)
+      end do
+    end do
     ! Ordinary disks and polygons go into the cell grid; much larger ones (and
     ! walls, drums) are "big" and tested against all. Mesh contactors are
     ! sorted at each rough detection (their size follows the mesh).
@@ -134,6 +145,15 @@ contains
         if (cls_kind(i) == kind .and. cls_color(i) == color) find_cls = i
       end do
     end function find_cls
+
+    integer function kind_of_name(name)
+      character(len=5), intent(in) :: name
+      integer :: kk
+      kind_of_name = 0
+      do kk = 1, 6
+        if (kind_name(kk) == name) kind_of_name = kk
+      end do
+    end function kind_of_name
 
     function kind_name(kind) result(name)
       integer, intent(in) :: kind
@@ -283,6 +303,12 @@ contains
       integer, intent(in) :: a, b
       integer :: icd, ian, inter, law
       real(wp) :: alert, dist, reach
+      if (.not. det%may_meet(det%cls(a), det%cls(b))) return
+      ! Most pairs of neighbouring cells are far apart: reject them first.
+      if (t%kind(a) /= tk_xksid .and. t%kind(b) /= tk_xksid) then
+        reach = bound(a) + bound(b) + det%max_alert + margin
+        if ((c(1, a) - c(1, b))**2 + (c(2, a) - c(2, b))**2 > reach**2) return
+      end if
       if (t%body(a) == t%body(b) .and. t%model(a) == t%model(b)) return
       if (.not. (body_movable(a) .or. body_movable(b))) return
       ! Orientation: the interaction type decides which side is the candidate;

@@ -6,18 +6,18 @@ module fracas_read_command
   use fracas_kinds, only: wp
   use fracas_errors, only: input_error
   use fracas_deck, only: run_control_t
-  use fracas_datbox_text, only: text_file_t, load_text, parse_real, parse_int, lower, itoa, rtoa
+  use fracas_datbox_text, only: text_file_t, load_text, parse_real, parse_int, lower, itoa, rtoa, edit_distance
   implicit none
   private
   public :: read_command, apply_command_setting, check_run_control, command_keywords
 
-  integer, parameter :: n_keys = 20
+  integer, parameter :: n_keys = 23
   character(len=21), parameter :: keys(n_keys) = [character(len=21) :: &
     'time_step', 'number_of_steps', 'final_time', 'theta', 'detection_frequency', &
     'nlgs_check', 'nlgs_tolerance', 'nlgs_relaxation', 'nlgs_sweeps_per_check', &
     'nlgs_max_checks', 'nlgs_order', 'nlgs_seed', 'output_dof_every', 'output_vtk_every', &
     'output_hdf5_every', 'progress_every', 'plane', 'newton_tolerance', 'newton_max_iterations', &
-    'linear_solver']
+    'linear_solver', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision']
   integer, parameter :: k_time_step = 1, k_number_of_steps = 2, k_final_time = 3
 
 contains
@@ -170,6 +170,12 @@ contains
       s = 'one of strain, stress'
     case ('linear_solver')
       s = 'one of auto, dense, cholmod'
+    case ('nlgs_unconverged')
+      s = 'one of warn, fail, stop'
+    case ('output_vtk_disks')
+      s = 'one of points, polygons'
+    case ('output_vtk_precision')
+      s = 'one of single, double'
     case default
       s = 'an integer >= 0'
     end select
@@ -251,6 +257,27 @@ contains
       case default
         call bad()
       end select
+    case ('nlgs_unconverged')
+      select case (lv)
+      case ('warn', 'fail', 'stop')
+        run%nlgs_unconverged = lv
+      case default
+        call bad()
+      end select
+    case ('output_vtk_disks')
+      select case (lv)
+      case ('points', 'polygons')
+        run%output_vtk_disks = lv
+      case default
+        call bad()
+      end select
+    case ('output_vtk_precision')
+      select case (lv)
+      case ('single', 'double')
+        run%output_vtk_precision = lv
+      case default
+        call bad()
+      end select
     end select
 
   contains
@@ -308,18 +335,4 @@ contains
     end if
   end function suggestion
 
-  !> Levenshtein distance.
-  pure integer function edit_distance(a, b) result(d)
-    character(len=*), intent(in) :: a, b
-    integer :: prev(0:len(b)), cur(0:len(b)), i, j
-    prev = [(j, j=0, len(b))]
-    do i = 1, len(a)
-      cur(0) = i
-      do j = 1, len(b)
-        cur(j) = min(prev(j) + 1, cur(j - 1) + 1, prev(j - 1) + merge(0, 1, a(i:i) == b(j:j)))
-      end do
-      prev = cur
-    end do
-    d = prev(len(b))
-  end function edit_distance
 end module fracas_read_command

@@ -240,16 +240,16 @@ contains
           if (side_model(c, k, s2) /= bm_mesh .or. side_body(c, k, s2) /= side_body(c, k, s)) cycle
           mb = solver%gm(s2, k)
           g0 = solver%goff(s2, k)
-          ! H_s applied to the two columns of G_s2
+          ! H_s applied to the two columns of G_s2 (stored interleaved by rows)
           ht_g = 0.0_wp; hn_g = 0.0_wp
           do i = 2 * s - 1, 2 * s
             wgt = sgn * c%mwt(i, k)
             sl = 2 * m%cslot(c%mnode(i, k)) - 1
             do j = 1, 2
-              ht_g(j) = ht_g(j) + wgt * (t(1) * solver%gmat(g0 + (j - 1) * mb + sl) + &
-                                         t(2) * solver%gmat(g0 + (j - 1) * mb + sl + 1))
-              hn_g(j) = hn_g(j) + wgt * (nrm(1) * solver%gmat(g0 + (j - 1) * mb + sl) + &
-                                         nrm(2) * solver%gmat(g0 + (j - 1) * mb + sl + 1))
+              ht_g(j) = ht_g(j) + wgt * (t(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
+                                         t(2) * solver%gmat(g0 + 2 * sl + j))
+              hn_g(j) = hn_g(j) + wgt * (nrm(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
+                                         nrm(2) * solver%gmat(g0 + 2 * sl + j))
             end do
           end do
           c%w(1, k) = c%w(1, k) + ht_g(1)
@@ -331,9 +331,11 @@ contains
           wgt = sgn * c%mwt(i, k)
           if (wgt == 0.0_wp) cycle
           call mailx_compliance_columns(m, node, cols)
-          solver%gmat(g0 + 1:g0 + mb) = solver%gmat(g0 + 1:g0 + mb) + wgt * (t(1) * cols(:, 1) + t(2) * cols(:, 2))
-          solver%gmat(g0 + mb + 1:g0 + 2 * mb) = solver%gmat(g0 + mb + 1:g0 + 2 * mb) + &
-                                                 wgt * (nrm(1) * cols(:, 1) + nrm(2) * cols(:, 2))
+          ! rows (G_t(i), G_n(i)) interleaved, as the mesh kernel reads them
+          solver%gmat(g0 + 1:g0 + 2 * mb:2) = solver%gmat(g0 + 1:g0 + 2 * mb:2) + &
+                                              wgt * (t(1) * cols(:, 1) + t(2) * cols(:, 2))
+          solver%gmat(g0 + 2:g0 + 2 * mb:2) = solver%gmat(g0 + 2:g0 + 2 * mb:2) + &
+                                              wgt * (nrm(1) * cols(:, 1) + nrm(2) * cols(:, 2))
         end do
       end do
     end do
@@ -665,7 +667,8 @@ contains
             g0 = solver%goff(sd, k)
             v0 = solver%moff(side_body(c, k, sd))
             do i = 1, mb
-              solver%mv(v0 + i) = solver%mv(v0 + i) + solver%gmat(g0 + i) * c%r(1, k) + solver%gmat(g0 + mb + i) * c%r(2, k)
+              solver%mv(v0 + i) = solver%mv(v0 + i) + solver%gmat(g0 + 2 * i - 1) * c%r(1, k) + &
+                                  solver%gmat(g0 + 2 * i) * c%r(2, k)
             end do
           end if
         end do

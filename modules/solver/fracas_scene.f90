@@ -12,6 +12,7 @@ module fracas_scene
   use fracas_drives, only: drive_value
   use fracas_mailx, only: mailx_t, mailx_build, mailx_begin_step, mailx_detection_coor, mailx_converged, &
                           mailx_end_step, mailx_kinetic_energy
+  use fracas_cracks, only: cracks_t, cracks_init, cracks_update
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
   use fracas_contact_laws, only: law_t, law_from_input, law_czm
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
@@ -46,6 +47,7 @@ module fracas_scene
     real(wp) :: newton_tolerance = 1.0e-6_wp
     integer :: newton_max_iterations = 20
     type(tactors_t) :: tactors
+    type(cracks_t) :: cracks                 !< cohesive interfaces of meshes (none without)
     type(law_t), allocatable :: laws(:)
     type(detection_t) :: det
     type(contacts_t) :: contacts
@@ -153,6 +155,7 @@ contains
     end do
     sc%first_tactor(size(bodies) + 1) = k
     sc%contacts%with_mesh = sc%meshes%n > 0
+    call cracks_init(sc%cracks, sc%tactors, sc%meshes)
     call detection_init(sc%det, sc%tactors, deck%see_rules, nick)
     allocate (sc%q(3, nb))
 
@@ -328,6 +331,7 @@ contains
       call system_clock(t2)
       rep%solve_seconds = real(t2 - t1, wp) / real(rate, wp)
       call nlgs_update_cohesive(c, sc%laws, sc%h, sc%time + sc%h, stored, coh_work, released)
+      call cracks_update(sc%cracks, c, sc%laws, sc%steps_done == 0, sc%step + 1)
 
       ! Energy audit of the step (before the begin state is overwritten).
       do k = 1, b%n
