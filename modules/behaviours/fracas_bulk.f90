@@ -42,7 +42,7 @@ module fracas_bulk
 
   !> One bulk material. Units: Pa, kg/m^3.
   type :: bulk_t
-    integer :: law = bulk_elastic     !< bulk_elastic | bulk_j2 (0: not a law for meshes)
+    integer :: law = bulk_elastic
     real(wp) :: density = 0.0_wp
     real(wp) :: young = 0.0_wp, poisson = 0.0_wp
     real(wp) :: yield0 = 0.0_wp       !< initial yield stress (J2)
@@ -56,10 +56,7 @@ module fracas_bulk
 
 contains
 
-  !> The bulk law of a BULK_BEHAV.DAT record: ELAS -> elastic, ELAS_PLAS -> J2,
-  !> any other law (RIGID, ...) -> law 0, not a law for meshes (the caller
-  !> reports it where an element uses it). Parameters of ELAS and ELAS_PLAS are
-  !> checked here (input error at the material's record).
+  !> The bulk law of a BULK_BEHAV.DAT record: ELAS -> elastic, ELAS_PLAS -> J2.
   function bulk_from_material(m) result(mat)
     type(material_input_t), intent(in) :: m
     type(bulk_t) :: mat
@@ -73,8 +70,8 @@ contains
       if (m%hardening < 0.0_wp) call input_error(m%src%file, m%src%line, 0, &
                                                  'ELAS_PLAS '//trim(m%nickname)//': K___ must be >= 0')
     case default
-      mat%law = 0
-      return
+      call input_error(m%src%file, m%src%line, 0, 'material '//trim(m%nickname)//' ('//trim(m%law)// &
+                       ') is not a bulk law of meshed bodies (ELAS or ELAS_PLAS)')
     end select
     if (m%young <= 0.0_wp .or. m%poisson <= -1.0_wp .or. m%poisson >= 0.5_wp) &
       call input_error(m%src%file, m%src%line, 0, 'material '//trim(m%nickname)// &
