@@ -8,7 +8,7 @@ program fracas
   use fracas_read_deck, only: read_deck
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
   use fracas_output, only: output_t, output_open, output_vtk, output_outbox, output_snapshot, &
-                           output_series, output_close
+                           output_series, output_close, output_timing
   use fracas_version, only: version_string
   use fracas_command_line, only: argument_value
   implicit none
@@ -23,7 +23,10 @@ program fracas
   integer :: i, nargs, nsteps, istep, every, total_sweeps, unconverged, late, hdf5_every, first_unconverged
   real(wp) :: late_max
   integer(int64) :: t0, t1, rate
-  real(wp) :: elapsed, worst_residual
+  real(wp) :: worst_residual
+  ! Wall and CPU seconds of reading the deck, building the scene (meshes
+  ! assembled and factorized) and the time loop, for OUTBOX/fracas.h5.
+  real(wp) :: read_wall, read_cpu, setup_wall, setup_cpu, loop_wall, loop_cpu, cpu0, cpu1
 
   call main()
 
@@ -74,12 +77,17 @@ contains
     end if
     if (len(out_dir) == 0) out_dir = case_dir
 
+    call clocks(t0, cpu0)
     if (len(command_file) > 0) then
       call read_deck(case_dir, deck, command_file, settings=settings)
     else
       call read_deck(case_dir, deck, settings=settings)
     end if
+    call clocks(t1, cpu1)
+    call since(t0, cpu0, t1, cpu1, read_wall, read_cpu)
     call scene_build(deck, sc)
+    call clocks(t0, cpu0)
+    call since(t1, cpu1, t0, cpu0, setup_wall, setup_cpu)
     nsteps = deck%run%number_of_steps
     if (check_only) then
       write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'check: OK (', sc%bodies%n + sc%meshes%n, ' bodies, ', sc%tactors%n, &
@@ -88,6 +96,8 @@ contains
     end if
 
     call output_open(out, sc, deck, out_dir, overwrite)
+    call output_timing(out, 'read', read_wall, read_cpu)
+    call output_timing(out, 'setup', setup_wall, setup_cpu)
     call set_cleanup(close_incomplete)
     if (deck%run%output_vtk_every > 0) call output_vtk(out, sc)
     every = deck%run%progress_every
@@ -96,7 +106,7 @@ contains
     if (hdf5_every < 0) hdf5_every = max(1, nsteps / 100)   ! not given: about 100 snapshots
     total_sweeps = 0; unconverged = 0; worst_residual = 0.0_wp; late = 0; late_max = 0.0_wp
     first_unconverged = 0
-    call system_clock(t0, rate)
+    call clocks(t0, cpu0)
     do istep = 1, nsteps
       call scene_step(sc, rep)
       total_sweeps = total_sweeps + rep%nlgs%sweeps
@@ -111,11 +121,12 @@ contains
       if (.not. rep%nlgs%converged) call not_converged()
       if (.not. quiet .and. (mod(istep, every) == 0 .or. istep == nsteps)) call progress()
     end do
+    call clocks(t1, cpu1)
+    call since(t0, cpu0, t1, cpu1, loop_wall, loop_cpu)
+    call output_timing(out, 'loop', loop_wall, loop_cpu)
     call output_close(out)
-    call system_clock(t1)
     if (.not. quiet) then
-      elapsed = real(t1 - t0, wp) / real(rate, wp)
-      write (output_unit, '(a,i0,a,f0.3,a,i0,a,es9.2)') 'fracas: done: ', nsteps, ' steps in ', elapsed, &
+      write (output_unit, '(a,i0,a,f0.3,a,i0,a,es9.2)') 'fracas: done: ', nsteps, ' steps in ', loop_wall, &
         ' s, ', total_sweeps, ' NLGS sweeps, worst natural-map residual ', worst_residual
       write (output_unit, '(a)') 'fracas: results: '//out_dir//'/OUTBOX/fracas.h5'
       if (deck%run%output_vtk_every > 0) write (output_unit, '(a)') 'fracas: ParaView: '//out_dir//'/DISPLAY/fracas.pvd'
@@ -179,6 +190,23 @@ contains
   subroutine close_incomplete()
     call output_close(out, complete=.false.)
   end subroutine close_incomplete
+
+  !> Wall clock (ticks of system_clock) and process CPU time (s) now.
+  subroutine clocks(ticks, cpu)
+    integer(int64), intent(out) :: ticks
+    real(wp), intent(out) :: cpu
+    call system_clock(ticks, rate)
+    call cpu_time(cpu)
+  end subroutine clocks
+
+  !> Wall and CPU seconds between two clocks readings.
+  subroutine since(ticks0, cpu_start, ticks1, cpu_end, wall, cpu)
+    integer(int64), intent(in) :: ticks0, ticks1
+    real(wp), intent(in) :: cpu_start, cpu_end
+    real(wp), intent(out) :: wall, cpu
+    wall = real(ticks1 - ticks0, wp) / real(rate, wp)
+    cpu = cpu_end - cpu_start
+  end subroutine since
 
   !> True every n steps (never for n = 0).
   logical function every_n(n)

@@ -35,7 +35,7 @@ module fracas_output
   implicit none
   private
   public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
-            output_flush, output_close, series_names, output_owns
+            output_flush, output_close, series_names, output_owns, output_timing
 
   integer, parameter :: n_series = 33
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
@@ -959,6 +959,17 @@ contains
 
   !> Close every output. complete = .false.: the run stopped before its end
   !> (fracas.h5 keeps complete = 0; end_reason, if given, says why).
+  !> Root attributes NAME_seconds (wall) and NAME_cpu_seconds (CPU time of
+  !> the process) of a part of the run the driver timed (read, setup, loop).
+  subroutine output_timing(o, name, wall, cpu)
+    type(output_t), intent(inout) :: o
+    character(len=*), intent(in) :: name
+    real(wp), intent(in) :: wall, cpu
+    if (.not. o%h5_open) return
+    call h5_write_attr(o%h5%fid, name//'_seconds', wall)
+    call h5_write_attr(o%h5%fid, name//'_cpu_seconds', cpu)
+  end subroutine output_timing
+
   subroutine output_close(o, complete, end_reason)
     type(output_t), intent(inout) :: o
     logical, intent(in), optional :: complete

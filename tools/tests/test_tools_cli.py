@@ -117,6 +117,16 @@ def test_end_to_end_with_fracas(tmp_path):
         assert run.complete and run.n_bodies == 63
         assert len(run.series["time"]) == 50
         assert run.deck() is not None
+    # Timing attributes of the driver (doc/output_layout.md 1.1): the loop holds every
+    # step; a single-threaded run's CPU time does not exceed its wall time.
+    import h5py
+    with h5py.File(h5, "r") as f:
+        a = f.attrs
+        for part in ("read", "setup", "loop"):
+            assert 0.0 <= a[part + "_cpu_seconds"] <= a[part + "_seconds"] + 0.01, part
+        assert a["loop_cpu_seconds"] > 0.0
+        assert f["series/step_time"][:].sum() <= a["loop_seconds"]
+    with post.Run(d) as run:
         s = run.snapshot(-1)
         assert s.step == 50
         # the grains fell: positions = reference + displacement, below the reference
