@@ -34,6 +34,9 @@ module fracas_read_bodies
 
   !> Columns of an element line: node k in columns node_col(k) .. node_col(k) + 6 (I7).
   integer, parameter :: node_col0 = 21, node_width = 7
+  !> Names of the node fields in error messages (constants, not formatted per element).
+  character(len=6), parameter :: node_label(8) = ['node 1', 'node 2', 'node 3', 'node 4', 'node 5', 'node 6', &
+                                                  'node 7', 'node 8']
 
 contains
 
@@ -377,7 +380,7 @@ contains
       allocate (e%nodes(nn))
       do k = 1, nn
         c = node_col0 + node_width*(k - 1)
-        e%nodes(k) = get_int(ln, c, c + node_width - 1, 'node '//itoa(k)//' of the '//kind)
+        e%nodes(k) = get_int(ln, c, c + node_width - 1, node_label(k)//' of the '//kind)
         do j = 1, k - 1
           if (e%nodes(j) == e%nodes(k)) call line_error(ln, c, 'node '//itoa(e%nodes(k))// &
                                                         ' appears twice in this '//kind)
