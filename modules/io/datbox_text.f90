@@ -9,6 +9,7 @@ module fracas_datbox_text
   use fracas_errors, only: input_error
   use fracas_deck, only: source_t
   use fracas_files, only: file_exists
+  use fracas_strings, only: lower, upper, itoa, rtoa
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, ieee_set_halting_mode, &
                                            ieee_set_flag
@@ -388,40 +389,7 @@ contains
     is_digit = c >= '0' .and. c <= '9'
   end function is_digit
 
-  pure function lower(s) result(r)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: r
-    integer :: k
-    r = s
-    do k = 1, len(s)
-      if (r(k:k) >= 'A' .and. r(k:k) <= 'Z') r(k:k) = achar(iachar(r(k:k)) + 32)
-    end do
-  end function lower
 
-  pure function upper(s) result(r)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: r
-    integer :: k
-    r = s
-    do k = 1, len(s)
-      if (r(k:k) >= 'a' .and. r(k:k) <= 'z') r(k:k) = achar(iachar(r(k:k)) - 32)
-    end do
-  end function upper
 
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 
-  !> Short text form of a real for messages.
-  function rtoa(x) result(s)
-    real(wp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    write (buf, '(es12.5)') x
-    s = trim(adjustl(buf))
-  end function rtoa
 end module fracas_datbox_text

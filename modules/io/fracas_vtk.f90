@@ -15,6 +15,7 @@
 module fracas_vtk
   use, intrinsic :: iso_fortran_env, only: int8, int32, int64
   use fracas_kinds, only: wp, ik
+  use fracas_strings, only: itoa
   use fracas_errors, only: fatal
   use fracas_files, only: atomic_rename
   implicit none
@@ -459,11 +460,4 @@ contains
     end do
   end function xml_escape
 
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 end module fracas_vtk

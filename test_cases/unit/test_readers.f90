@@ -10,6 +10,7 @@ program test_readers
   use fracas_deck, only: deck_t, body_input_t, material_input_t, law_input_t, see_rule_input_t, &
                          driven_dof_input_t, dof_record_t, contact_record_t, run_control_t
   use fracas_datbox_text, only: parse_real, parse_int
+  use fracas_strings, only: itoa
   use fracas_read_bodies, only: read_bodies
   use fracas_read_bulk_behav, only: read_bulk_behav
   use fracas_read_tact_behav, only: read_tact_behav, law_param_count
@@ -68,14 +69,6 @@ contains
       call get_environment_variable(name, value=v)
     end if
   end function env_or
-
-  function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 
   function dat(case_name, file) result(p)
     character(len=*), intent(in) :: case_name, file

@@ -1,0 +1,47 @@
+!> The one place for small string helpers used in messages and file names.
+module fracas_strings
+  use fracas_kinds, only: wp
+  implicit none
+  private
+  public :: itoa, rtoa, lower, upper
+
+contains
+
+  !> An integer without blanks: 42 -> '42'.
+  pure function itoa(i) result(s)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=16) :: buf
+    write (buf, '(i0)') i
+    s = trim(buf)
+  end function itoa
+
+  !> Short text form of a real for messages (es12.5, blanks removed).
+  function rtoa(x) result(s)
+    real(wp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    write (buf, '(es12.5)') x
+    s = trim(adjustl(buf))
+  end function rtoa
+
+  pure function lower(s) result(r)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: r
+    integer :: k
+    r = s
+    do k = 1, len(s)
+      if (r(k:k) >= 'A' .and. r(k:k) <= 'Z') r(k:k) = achar(iachar(r(k:k)) + 32)
+    end do
+  end function lower
+
+  pure function upper(s) result(r)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: r
+    integer :: k
+    r = s
+    do k = 1, len(s)
+      if (r(k:k) >= 'a' .and. r(k:k) <= 'z') r(k:k) = achar(iachar(r(k:k)) - 32)
+    end do
+  end function upper
+end module fracas_strings
