@@ -270,10 +270,15 @@ contains
     call system_clock(r%last_flush)
   end subroutine results_flush
 
-  !> Set complete = 1, flush and close. Does nothing if the file is not open.
-  subroutine results_close(r)
+  !> Set complete = 1 (unless complete is .false.: a run stopped on an error),
+  !> flush and close. Does nothing if the file is not open.
+  subroutine results_close(r, complete)
     type(results_h5_t), intent(inout) :: r
+    logical, intent(in), optional :: complete
     integer :: k
+    logical :: done
+    done = .true.
+    if (present(complete)) done = complete
     if (.not. r%is_open) return
     if (allocated(r%cols)) then
       do k = 1, size(r%cols)
@@ -283,7 +288,7 @@ contains
     end if
     call h5_close_series(r%snap_step)
     call h5_close_series(r%snap_time)
-    call h5_write_attr(r%fid, 'complete', 1_ik)
+    call h5_write_attr(r%fid, 'complete', merge(1_ik, 0_ik, done))
     call h5_close_file(r%fid)
     r%is_open = .false.
   end subroutine results_close

@@ -16,12 +16,17 @@ contains
     s = trim(buf)
   end function itoa
 
-  !> Short text form of a real for messages (es12.5, blanks removed).
+  !> Short text form of a real for messages (es12.5, blanks removed; a
+  !> three-digit exponent keeps its E).
   function rtoa(x) result(s)
     real(wp), intent(in) :: x
     character(len=:), allocatable :: s
     character(len=32) :: buf
-    write (buf, '(es12.5)') x
+    if (abs(x) >= 1.0e100_wp .or. (x /= 0.0_wp .and. abs(x) < 1.0e-99_wp)) then
+      write (buf, '(es13.5e3)') x
+    else
+      write (buf, '(es12.5)') x
+    end if
     s = trim(adjustl(buf))
   end function rtoa
 

@@ -329,9 +329,12 @@ contains
     end do
   end function broken_flags
 
-  subroutine output_close(o)
+  !> Close the results; complete = .false. for a run stopped on an error
+  !> (fracas.h5 then keeps complete = 0).
+  subroutine output_close(o, complete)
     type(output_t), intent(inout) :: o
-    if (o%h5_open) call results_close(o%h5)
+    logical, intent(in), optional :: complete
+    if (o%h5_open) call results_close(o%h5, complete)
     o%h5_open = .false.
   end subroutine output_close
 end module fracas_output
