@@ -17,7 +17,7 @@ module fracas_datbox_text
   private
   public :: text_line_t, text_file_t, load_text, line_error, &
             field, is_blank, keyword_of, is_data, get_real, get_int, get_word, &
-            parse_real, parse_int, lower, upper, itoa, rtoa, cols, get_steps
+            parse_real, parse_int, lower, upper, itoa, rtoa, cols, get_steps, check_line_end
 
   !> One data line: its text (trailing blanks removed) and where it was read.
   type :: text_line_t
@@ -167,6 +167,7 @@ contains
     character(len=:), allocatable :: msg
     if (.not. parse_real(field(ln, c1, c2), x, msg)) &
       call line_error(ln, c1, 'expected a real number in '//cols(c1, c2)//' ('//what//'), '//found(ln, c1, msg))
+    call check_spill(ln, c1, c2, what)
   end function get_real
 
   !> An integer from columns c1..c2.
@@ -178,6 +179,7 @@ contains
     character(len=:), allocatable :: msg
     if (.not. parse_int(field(ln, c1, c2), i, msg)) &
       call line_error(ln, c1, 'expected an integer in '//cols(c1, c2)//' ('//what//'), '//found(ln, c1, msg))
+    call check_spill(ln, c1, c2, what)
   end function get_int
 
   !> The parser's "found ..." message, made explicit for a line that ends
@@ -211,7 +213,45 @@ contains
         call line_error(ln, c1, 'expected '//what//' in '//cols(c1, c2)//', found blanks')
       end if
     end if
+    if (len(w) > 0) call check_spill(ln, c1, c2, what)
   end function get_word
+
+  !> A value read from columns c1..c2 must end there: a non-blank in column c2
+  !> followed by a non-blank means the value runs on past its field (LMGC90
+  !> reads fixed columns: '1.0000000E-010' one column too far reads 0.1).
+  subroutine check_spill(ln, c1, c2, what)
+    type(text_line_t), intent(in) :: ln
+    integer, intent(in) :: c1, c2
+    character(len=*), intent(in) :: what
+    integer :: a, b
+    if (c2 >= len(ln%text)) return
+    if (ln%text(c2:c2) == ' ' .or. ln%text(c2 + 1:c2 + 1) == ' ') return
+    a = c2
+    do while (a > 1)
+      if (ln%text(a - 1:a - 1) == ' ') exit
+      a = a - 1
+    end do
+    b = c2 + 1
+    do while (b < len(ln%text))
+      if (ln%text(b + 1:b + 1) == ' ') exit
+      b = b + 1
+    end do
+    call line_error(ln, c2 + 1, trim(what)//" in "//cols(c1, c2)//" runs on past its last column: found '"// &
+                    ln%text(a:b)//"' (values are read from fixed columns; align it to end at column "// &
+                    itoa(c2)//')')
+  end subroutine check_spill
+
+  !> Nothing may follow the last field of a line (columns after last_col blank).
+  subroutine check_line_end(ln, last_col, what)
+    type(text_line_t), intent(in) :: ln
+    integer, intent(in) :: last_col
+    character(len=*), intent(in) :: what
+    integer :: a
+    if (len_trim(ln%text) <= last_col) return
+    a = last_col + verify(ln%text(last_col + 1:), ' ')
+    call line_error(ln, a, "unexpected text after the last field of "//what//" (column "//itoa(last_col)// &
+                    "): '"//trim(ln%text(a:))//"'")
+  end subroutine check_line_end
 
   !> The '$steps' header of DOF and Vloc_Rloc files: the integer after
   !> '$steps' and the number after 'time='. Read by token, not by column,

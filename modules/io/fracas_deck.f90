@@ -90,6 +90,7 @@ module fracas_deck
     character(len=30) :: name = ''       !< e.g. 'IQS_CLB', 'RST_CLB', 'IQS_MAC_CZM'
     real(wp), allocatable :: params(:)
     character(len=5), allocatable :: param_labels(:)  !< labels as written ('fric=' ...)
+    integer, allocatable :: param_lines(:), param_cols(:)  !< where each parameter was read
     type(source_t) :: src
   end type law_input_t
 

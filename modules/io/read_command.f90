@@ -56,7 +56,7 @@ contains
                          //itoa(max(seen(k_final_time), seen(k_number_of_steps)))//')')
       seen(key) = tf%lines(i)%src%line
     end do
-    call check_run_control(run, path, 1)
+    call check_run_control(run, path, 1, seen)
   end subroutine read_command
 
   !> Apply one "keyword=value" (or "keyword value") setting, e.g. from the
@@ -72,23 +72,48 @@ contains
 
   !> Checks that need the whole deck: time_step given, and number_of_steps or
   !> final_time. With final_time, number_of_steps = nint(final_time/time_step).
-  !> A missing keyword is reported at ORIGIN:LINE:1 (LINE 1 for a file, 0 for
-  !> command-line settings, where no line is shown).
-  subroutine check_run_control(run, origin, line)
+  !> Values each valid alone but unusable together are refused: a step count
+  !> or a sweep limit past the largest integer, a time step that is not a
+  !> normal number. A missing keyword is reported at ORIGIN:LINE:1 (LINE 1 for
+  !> a file, 0 for command-line settings, where no line is shown); a bad
+  !> combination at the line of the keyword (key_lines(k): line of keyword k).
+  subroutine check_run_control(run, origin, line, key_lines)
     type(run_control_t), intent(inout) :: run
     character(len=*), intent(in) :: origin
     integer, intent(in), optional :: line
+    integer, intent(in), optional :: key_lines(:)
     integer :: l
+    real(wp) :: nsteps
     l = 0
     if (present(line)) l = line
     if (run%time_step <= 0.0_wp) call input_error(origin, l, 1, &
                                                  "required keyword 'time_step' is missing (the time step, a real > 0)")
+    if (run%time_step < tiny(1.0_wp)) call input_error(origin, line_of(1), 1, 'time_step '//rtoa(run%time_step)// &
+      ' is below the smallest normal double: the time could not advance')
     if (run%final_time > 0.0_wp) then
-      run%number_of_steps = max(1, nint(run%final_time/run%time_step))
+      nsteps = run%final_time/run%time_step
+      if (.not. nsteps < real(huge(1), wp)) call input_error(origin, line_of(k_final_time), 1, &
+        'final_time / time_step = '//rtoa(nsteps)//' steps, more than the largest step count ('//itoa(huge(1))//')')
+      run%number_of_steps = max(1, nint(nsteps))
     else if (run%number_of_steps <= 0) then
       call input_error(origin, l, 1, "one of 'number_of_steps' (an integer >= 1) or 'final_time' (a real > 0) " &
                        //'is required')
     end if
+    if (real(run%nlgs_sweeps_per_check, wp)*real(run%nlgs_max_checks, wp) > real(huge(1), wp)) &
+      call input_error(origin, line_of(10), 1, 'nlgs_sweeps_per_check x nlgs_max_checks = '// &
+        rtoa(real(run%nlgs_sweeps_per_check, wp)*real(run%nlgs_max_checks, wp))// &
+        ' sweeps per step, more than the largest sweep count ('//itoa(huge(1))//')')
+
+  contains
+
+    !> Line of keyword k if known, else the default line.
+    integer function line_of(k)
+      integer, intent(in) :: k
+      line_of = l
+      if (present(key_lines)) then
+        if (key_lines(k) > 0) line_of = key_lines(k)
+      end if
+    end function line_of
   end subroutine check_run_control
 
   integer function first_col(text)

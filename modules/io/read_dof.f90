@@ -5,7 +5,7 @@
 module fracas_read_dof
   use fracas_kinds, only: wp
   use fracas_deck, only: dof_record_t
-  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, &
+  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, check_line_end, &
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, get_steps
   implicit none
   private
@@ -86,6 +86,8 @@ contains
             r%x(k) = get_real(lx, value_col(k), value_col(k) + 13, 'X('//itoa(k)//')')
             r%v(k) = get_real(lv, value_col(k), value_col(k) + 13, 'V('//itoa(k)//')')
           end do
+          call check_line_end(lx, 90, 'the X line')
+          call check_line_end(lv, 90, 'the V line')
         end associate
         i = i + 3
       case ('$$$$$')
