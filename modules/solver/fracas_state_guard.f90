@@ -6,8 +6,8 @@
 !>   that double precision resolves at the body's size, and every driven dof
 !>   an imposed value that keeps it so over the run. Errors name the deck line.
 !> - scene_fault (after every step, O(bodies + contacts)): positions,
-!>   velocities, reactions and cohesive state finite, and no body beyond the
-!>   resolvable range. Returns a message naming the body or contact ('' if sound).
+!>   velocities, reactions, cohesive state and energy audit finite, and no body
+!>   beyond the resolvable range. Returns a message naming the body or contact ('' if sound).
 !>
 !> Resolvable range: a coordinate x is stored to about |x| eps; when that
 !> exceeds a thousandth of the body's size, contact geometry at the body is
@@ -18,7 +18,7 @@ module fracas_state_guard
   use fracas_deck, only: deck_t, source_t
   use fracas_errors, only: input_error
   use fracas_ids, only: inter_names
-  use fracas_rbdy2, only: drive_value
+  use fracas_rbdy2, only: drive_value, rbdy2_kinetic_energy
   use fracas_scene, only: scene_t
   use fracas_strings, only: itoa, rtoa
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -177,6 +177,13 @@ contains
           return
         end if
       end do
+      if (.not. all(ieee_is_finite([rbdy2_kinetic_energy(b), sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, &
+                                    sc%cohesive_energy, sc%damage_dissipated]))) then
+        msg = 'the energy audit overflowed (kinetic energy '//rtoa(rbdy2_kinetic_energy(b))//', work of gravity '//rtoa(sc%work_gravity)//', of forces '// &
+              rtoa(sc%work_forces)//', of supports '//rtoa(sc%work_supports)//', dissipated '// &
+              rtoa(sc%dissipated)//'): masses, forces or velocities beyond double precision'
+        return
+      end if
       n = c%n
       if (n == 0) return
       if (.not. all(ieee_is_finite(c%r(:, 1:n)))) then
