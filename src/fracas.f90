@@ -140,10 +140,10 @@ contains
       if (every_n(deck%run%output_vtk_every)) call output_vtk(out, sc)
       if (every_n(deck%run%output_dof_every) .or. (deck%run%output_dof_every == 0 .and. istep == nsteps)) &
         call output_outbox(out, sc)
-      if (every_n(deck%run%output_hdf5_every)) call output_snapshot(out, sc)
-      ! A restart point with every snapshot and at the last step.
+      ! A restart point with every snapshot (which flushes the file) and at the last step.
       if (every_n(deck%run%output_hdf5_every) .or. istep == nsteps) &
         call restart_save(out%h5, sc, out%n_vtk, out%n_out)
+      if (every_n(deck%run%output_hdf5_every)) call output_snapshot(out, sc)
       if (.not. quiet .and. (mod(istep, every) == 0 .or. istep == nsteps)) call progress()
     end do
     call output_close(out)

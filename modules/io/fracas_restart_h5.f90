@@ -19,7 +19,7 @@ module fracas_restart_h5
   use fracas_errors, only: fatal
   use fracas_strings, only: itoa
   use fracas_files, only: file_exists
-  use fracas_h5, only: hid_t, h5_open_file, h5_close_file, h5_flush, h5_create_group, h5_open_group, &
+  use fracas_h5, only: hid_t, h5_open_file, h5_close_file, h5_create_group, h5_open_group, &
                        h5_close_group, h5_exists, h5_write_attr, h5_read_attr, &
                        h5_write_dataset, h5_read_dataset
   implicit none
@@ -46,8 +46,8 @@ module fracas_restart_h5
 
 contains
 
-  !> Write restart point st into the open results file fid (replacing one of
-  !> the same step) and flush the file.
+  !> Write restart point st into the open results file fid (the caller
+  !> flushes: the driver writes it just before a snapshot, which flushes).
   subroutine restart_h5_write(fid, st)
     integer(hid_t), intent(in) :: fid
     type(restart_state_t), intent(in) :: st
@@ -90,7 +90,6 @@ contains
     call h5_close_group(g)
     call h5_write_attr(groot, 'last', int(st%step, ik))
     call h5_close_group(groot)
-    call h5_flush(fid)
   end subroutine restart_h5_write
 
   !> Read the restart point of step `step` (< 0: the latest) from PATH.

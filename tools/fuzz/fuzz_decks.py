@@ -49,7 +49,7 @@ LMGC_CASES = ["disks_box", "drum", "driven_evolution", "polygons_ground", "mixed
 # Numbers: Fortran reals as DATBOX writes them (E/D exponents, or a bare-sign 3-digit exponent).
 NUM_RE = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eEdD][-+]?\d+|[-+]\d{3})?")
 EXTREMES = ["0", "-1", "1e308", "-1e308", "1e-308", "4.9e-324", "1e20", "-1e20", "1e100", "1e-100",
-            "2147483647", "-2147483648", "99999999999", "1e300", "NaN", "Inf", "1e-20", "3"]
+            "2147483647", "-2147483648", "99999999999", "1e300", "NaN", "Inf", "1e-20", "3", "1e400", "-1e-400"]
 WORDS = ["RBDY2", "MAILx", "DISKx", "DISKb", "POLYG", "JONCx", "xKSID", "PLAIN", "NO3xx", "vlocy", "force",
          "IQS_CLB", "RST_CLB", "MAC_CZM", "IQS_MAC_CZM", "MP3_CZM", "TH_CZM", "EXPO_CZM", "GAP_SGR_CLB",
          "BLEUx", "WALLx", "STONE", "iqsdw", "noctc", "stick", "slifw", "$bdyty", "$$$$$$", "evolution"]
@@ -107,18 +107,20 @@ def _count_bodies(path):
 def _format_like(token, value):
     """value as text no wider than token (right-aligned), or its natural form if it cannot fit."""
     width = len(token)
-    try:
-        v = float(value)
-    except ValueError:
+    m = re.fullmatch(r"([-+]?)(\d+(?:\.\d*)?)[eE]([-+]?\d+)", value)
+    if not m:
         return value.rjust(width)
-    if not math.isfinite(v) or re.fullmatch(r"[-+]?\d+", value):
-        return value.rjust(width)
-    letter = "D" if "D" in token.upper() and "D" in token else "E"
+    # Mantissa and exponent as text: values beyond double precision stay as written.
+    sign, mant, ex = m.group(1), float(m.group(2)), int(m.group(3))
+    if mant != 0.0:
+        shift = math.floor(math.log10(mant))
+        mant, ex = mant / 10.0 ** shift, ex + shift
+    letter = "D" if "D" in token else "E"
     for prec in range(7, -1, -1):
-        s = f"{v:.{prec}E}".replace("E", letter)
+        s = f"{sign}{mant:.{prec}f}{letter}{ex:+03d}"
         if len(s) <= width:
             return s.rjust(width)
-    return f"{v:.7E}"
+    return f"{sign}{mant:.7f}{letter}{ex:+03d}"
 
 
 def _numbers(line):
@@ -152,7 +154,8 @@ def mutate_file(rng, path, log):
                 v = float(tok.replace("D", "E").replace("d", "e")) if re.search(r"[eEdD]", tok) else float(tok)
             except ValueError:
                 v = 1.0
-            new = _format_like(tok, repr(v * 10.0 ** rng.randint(-320, 320)) if v else "1e" + str(rng.randint(-300, 300)))
+            mant, ex = f"{v if v else 1.0:.7E}".split("E")
+            new = _format_like(tok, f"{mant}E{int(ex) + rng.randint(-320, 320):+03d}")
         elif kind == "sign":
             new = ("-" + tok.lstrip("+-")) if not tok.startswith("-") else tok[1:].rjust(len(tok))
         else:
