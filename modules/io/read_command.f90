@@ -18,6 +18,8 @@ module fracas_read_command
     'nlgs_max_checks', 'nlgs_order', 'nlgs_seed', 'output_dof_every', 'output_vtk_every', &
     'output_hdf5_every', 'progress_every']
   integer, parameter :: k_time_step = 1, k_number_of_steps = 2, k_final_time = 3
+  !> Largest NLGS sweep budget of a step (sweeps per check x checks).
+  real(wp), parameter :: max_sweeps_per_step = 1.0e8_wp
 
 contains
 
@@ -73,7 +75,7 @@ contains
   !> Checks that need the whole deck: time_step given, and number_of_steps or
   !> final_time. With final_time, number_of_steps = nint(final_time/time_step).
   !> Values each valid alone but unusable together are refused: a step count
-  !> or a sweep limit past the largest integer, a time step that is not a
+  !> past the largest integer, a sweep budget past 1e8 per step, a time step that is not a
   !> normal number. A missing keyword is reported at ORIGIN:LINE:1 (LINE 1 for
   !> a file, 0 for command-line settings, where no line is shown); a bad
   !> combination at the line of the keyword (key_lines(k): line of keyword k).
@@ -99,10 +101,11 @@ contains
       call input_error(origin, l, 1, "one of 'number_of_steps' (an integer >= 1) or 'final_time' (a real > 0) " &
                        //'is required')
     end if
-    if (real(run%nlgs_sweeps_per_check, wp)*real(run%nlgs_max_checks, wp) > real(huge(1), wp)) &
+    if (real(run%nlgs_sweeps_per_check, wp)*real(run%nlgs_max_checks, wp) > max_sweeps_per_step) &
       call input_error(origin, line_of(10), 1, 'nlgs_sweeps_per_check x nlgs_max_checks = '// &
         rtoa(real(run%nlgs_sweeps_per_check, wp)*real(run%nlgs_max_checks, wp))// &
-        ' sweeps per step, more than the largest sweep count ('//itoa(huge(1))//')')
+        ' sweeps per step, more than '//rtoa(max_sweeps_per_step)//' (a step that does not converge would run '// &
+        'for hours; LMGC90 decks allow 1e3 to 1e5)')
 
   contains
 

@@ -3,8 +3,9 @@
 !>
 !> - scene_check_start (with --check and before a run): every body has a
 !>   mass and inertia that are normal numbers, a position and an initial speed
-!>   that double precision resolves at the body's size, and every driven dof
-!>   an imposed value that keeps it so over the run. Errors name the deck line.
+!>   that double precision resolves at the body's size, every driven dof an
+!>   imposed value that keeps it so over the run, and alert distances in that
+!>   range too. Errors name the deck line.
 !> - scene_fault (after every step, O(bodies + contacts)): positions,
 !>   velocities, reactions, cohesive state and energy audit finite, and no body
 !>   beyond the resolvable range. Returns a message naming the body or contact ('' if sound).
@@ -58,6 +59,9 @@ contains
       end do
       do k = 1, size(deck%driven)
         call check_drive(k)
+      end do
+      do k = 1, size(deck%see_rules)
+        call check_alert(k)
       end do
     end associate
     call ieee_set_flag(ieee_overflow, .false.)
@@ -139,6 +143,20 @@ contains
           'at its size)')
       end associate
     end subroutine check_drive
+
+    !> An alert distance beyond the resolvable range of the largest contactor
+    !> makes every pair a contact (O(n^2) contacts) without meaning anything.
+    subroutine check_alert(k)
+      integer, intent(in) :: k
+      real(wp) :: lim
+      if (sc%tactors%n == 0) return
+      lim = resolvable_length(maxval(sc%tactors%bound))
+      associate (r => deck%see_rules(k))
+        if (.not. (max(r%alert, r%global_alert) <= lim)) call input_error(r%src%file, r%src%line, 55, &
+          'alert distance '//rtoa(max(r%alert, r%global_alert))//' is beyond '//rtoa(lim)// &
+          ', what double precision resolves at the size of the largest contactor (every pair would be a contact)')
+      end associate
+    end subroutine check_alert
   end subroutine scene_check_start
 
   !> '' if the state after the last step is sound, else what is wrong, naming
