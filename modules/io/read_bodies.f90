@@ -224,6 +224,7 @@ contains
         if (area < 0.0_wp) call line_error(ln, 2, 'POLYG vertices are in clockwise order (signed area ' &
                                            //rtoa(area)//'); list them counter-clockwise')
         if (area == 0.0_wp) call line_error(ln, 2, 'POLYG has zero area (all vertices on a line)')
+        call check_polygon_shape(tf, i0, t%vertices)
       case default
         call line_error(ln, 2, "unknown contactor type '"//trim(t%kind)//"' for RBDY2 (supported: " &
                         //supported_tactors//')')
@@ -231,6 +232,35 @@ contains
     end associate
     i = i + 1
   end subroutine read_tactor
+
+  !> A POLYG must be convex (one contactor per convex part), its edges not
+  !> degenerate: each edge longer than what double precision resolves at the
+  !> polygon's extent (1e-3 extent / eps, as for body positions), so that edge
+  !> normals exist. Errors at the vertex line (line i0 + k for vertex k).
+  subroutine check_polygon_shape(tf, i0, v)
+    type(text_file_t), intent(in) :: tf
+    integer, intent(in) :: i0
+    real(wp), intent(in) :: v(:, :)
+    integer :: k, nv, kn, kp
+    real(wp) :: extent, edge, turn
+    nv = size(v, 2)
+    extent = maxval(abs(v))
+    do k = 1, nv
+      kn = mod(k, nv) + 1
+      edge = norm2(v(:, kn) - v(:, k))
+      if (.not. (edge > 1.0e3_wp * epsilon(1.0_wp) * extent)) call line_error(tf%lines(i0 + kn), 35, &
+        'POLYG vertex '//itoa(kn)//' is '//rtoa(edge)//' from vertex '//itoa(k)//' in a polygon of extent '// &
+        rtoa(extent)//': a degenerate edge (what double precision resolves at that extent is '// &
+        rtoa(1.0e3_wp * epsilon(1.0_wp) * extent)//')')
+    end do
+    do k = 1, nv
+      kp = mod(k + nv - 2, nv) + 1
+      kn = mod(k, nv) + 1
+      turn = (v(1, k) - v(1, kp)) * (v(2, kn) - v(2, k)) - (v(2, k) - v(2, kp)) * (v(1, kn) - v(1, k))
+      if (turn < 0.0_wp) call line_error(tf%lines(i0 + k), 35, 'POLYG is not convex at vertex '//itoa(k)// &
+        ' (a clockwise turn): split a non-convex shape into convex POLYG contactors of one body')
+    end do
+  end subroutine check_polygon_shape
 
   subroutine grow(tacs)
     type(tactor_input_t), allocatable, intent(inout) :: tacs(:)
