@@ -178,8 +178,10 @@ contains
     integer, intent(in) :: key
     character(len=:), allocatable :: s
     select case (trim(keys(key)))
-    case ('time_step', 'final_time', 'nlgs_tolerance')
+    case ('time_step', 'final_time')
       s = 'a real > 0'
+    case ('nlgs_tolerance')
+      s = 'a real >= 2.2e-16 (a smaller tolerance cannot be met in double precision)'
     case ('theta')
       s = 'a real in [0.5, 1]'
     case ('nlgs_relaxation')
@@ -231,7 +233,7 @@ contains
         call bad()
       end select
     case ('nlgs_tolerance')
-      run%nlgs_tolerance = real_in(0.0_wp, huge(1.0_wp), .false.)
+      run%nlgs_tolerance = real_in(epsilon(1.0_wp), huge(1.0_wp), .true.)
     case ('nlgs_relaxation')
       run%nlgs_relaxation = real_in(0.0_wp, 2.0_wp, .false.)
     case ('nlgs_sweeps_per_check')

@@ -63,6 +63,7 @@ contains
       do k = 1, size(deck%see_rules)
         call check_alert(k)
       end do
+      call check_sizes()
     end associate
     call ieee_set_flag(ieee_overflow, .false.)
     call ieee_set_flag(ieee_invalid, .false.)
@@ -157,6 +158,23 @@ contains
           ', what double precision resolves at the size of the largest contactor (every pair would be a contact)')
       end associate
     end subroutine check_alert
+
+    !> Contact geometry compares contactors with each other: the largest must stay
+    !> within what double precision resolves at the size of the smallest.
+    subroutine check_sizes()
+      integer :: kmax, kmin, ib, it
+      if (sc%tactors%n < 2) return
+      kmax = maxloc(sc%tactors%bound, 1)
+      kmin = minloc(sc%tactors%bound, 1)
+      if (sc%tactors%bound(kmax) <= resolvable_length(sc%tactors%bound(kmin))) return
+      ib = sc%tactors%body(kmax)
+      it = sc%tactors%rank(kmax)
+      associate (src => deck%bodies(ib)%tactors(it)%src)
+        call input_error(src%file, src%line, 0, 'contactor '//itoa(it)//' of body '//itoa(ib)//' is '// &
+          rtoa(sc%tactors%bound(kmax))//' across, the smallest contactor (body '//itoa(sc%tactors%body(kmin))// &
+          ') '//rtoa(sc%tactors%bound(kmin))//': beyond what double precision resolves at the small one')
+      end associate
+    end subroutine check_sizes
   end subroutine scene_check_start
 
   !> '' if the state after the last step is sound, else what is wrong, naming
