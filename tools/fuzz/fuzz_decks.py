@@ -44,6 +44,9 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+from fracas_tools.results import Run  # noqa: E402  (the one reader of fracas.h5)
+
 LMGC_CASES = ["disks_box", "drum", "driven_evolution", "polygons_ground", "mixed_disk_polygon", "glued_pair_czm"]
 
 # Numbers: Fortran reals as DATBOX writes them (E/D exponents, or a bare-sign 3-digit exponent).
@@ -280,39 +283,34 @@ def classify_check(rc, out, err):
 
 def results_sound(h5path, steps):
     """'' if fracas.h5 is complete and sensible, else what is wrong."""
-    import h5py
     import numpy as np
     try:
-        f = h5py.File(h5path, "r")
+        f = Run(h5path)
     except OSError as e:
         return f"cannot open fracas.h5: {e}"
     with f:
-        if int(f.attrs.get("complete", 0)) != 1:
+        if not f.complete:
             return "complete != 1 after exit 0"
-        radius = f["bodies/radius"][()] if "bodies/radius" in f else None
-        ref = f["bodies/reference"][()] if "bodies/reference" in f else None
-        for name, ds in f["series"].items():
-            v = ds[()]
+        for name, v in f.series.items():
             if not np.all(np.isfinite(v)):
                 return f"series/{name} is not finite"
-        if "series/step" in f and len(f["series/step"]) != steps:
-            return f"{len(f['series/step'])} rows in the series for {steps} steps"
-        for k, g in f.get("snapshots", {}).items():
-            for grp in ("bodies", "contacts"):
-                if grp not in g:
-                    continue
-                for name, ds in g[grp].items():
-                    v = ds[()]
-                    if v.dtype.kind == "f" and not np.all(np.isfinite(v)):
-                        return f"snapshots/{k}/{grp}/{name} is not finite"
-            if radius is not None and ref is not None and "bodies/X" in g:
-                x = g["bodies/X"][()]
-                pos = np.abs(ref[..., :2] + x[..., :2]).max(axis=-1) if x.shape[-1] == 3 else None
-                if pos is not None:
-                    lim = 1e-3 * radius / EPS
-                    if np.any(pos > lim):
-                        b = int(np.argmax(pos / lim))
-                        return f"snapshot {k}: body {b + 1} at {pos[b]:.3g}, beyond what double precision resolves"
+        if len(f.series.get("step", [])) != steps:
+            return f"{len(f.series.get('step', []))} rows in the series for {steps} steps"
+        radius = np.asarray(f.bodies.get("radius", []), dtype=float)
+        ref = f.bodies["reference"]
+        for name in f.snapshot_names:
+            snap = f.snapshot(name)
+            for what, v in [("bodies/X", snap.X), ("bodies/V", snap.V)] + \
+                           [("contacts/" + k, a) for k, a in snap.contacts.items()]:
+                v = np.asarray(v)
+                if v.dtype.kind == "f" and not np.all(np.isfinite(v)):
+                    return f"snapshot {name}: {what} is not finite"
+            if radius.size and ref.shape == snap.X.shape and ref.shape[1] == 3:
+                pos = np.abs(ref[:, :2] + snap.X[:, :2]).max(axis=-1)
+                lim = 1e-3 * radius / EPS
+                if np.any(pos > lim):
+                    b = int(np.argmax(pos / lim))
+                    return f"snapshot {name}: body {b + 1} at {pos[b]:.3g}, beyond what double precision resolves"
     return ""
 
 
@@ -345,10 +343,9 @@ def one_deck(args, sources, work, i):
         elif rc == 1 and "fracas: error:" in err:
             res["run"] = "stopped"
             if h5.exists():
-                import h5py
                 try:
-                    with h5py.File(h5, "r") as f:
-                        if int(f.attrs.get("complete", 0)) != 0:
+                    with Run(h5) as f:
+                        if f.complete:
                             res["run"] = "lie"
                             res["lie"] = "stopped with complete = 1"
                 except OSError:

@@ -81,6 +81,9 @@ from pathlib import Path
 
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from fracas_tools.results import Run  # noqa: E402  (the one reader of fracas.h5)
+
 FORMAT_VERSION = 1
 
 
@@ -129,11 +132,8 @@ def find_h5(run_dir):
 def find_case(h5_path, run_dir, case):
     if case:
         return Path(case)
-    import h5py
-    with h5py.File(h5_path, "r") as f:
+    with Run(h5_path) as f:
         c = f.attrs.get("case_dir")
-    if isinstance(c, bytes):
-        c = c.decode()
     for cand in ([Path(c)] if c else []) + [Path(run_dir)]:
         if (cand / "DATBOX" / "BODIES.DAT").is_file():
             return cand
@@ -165,29 +165,26 @@ def _disk_rect_area(cx, cy, r, x0, x1, y0, y1, n=64):
 
 def compute_tags(run_dir, case=None, with_hash=False):
     """Return an ordered dict name -> value (int, float or str)."""
-    import h5py
     h5_path = find_h5(run_dir)
     case_dir = find_case(h5_path, run_dir, case)
     kinds = body_contactor_kinds(case_dir / "DATBOX" / "BODIES.DAT")
     tags = {}
-    with h5py.File(h5_path, "r") as f:
-        if int(f.attrs.get("complete", 0)) != 1:
+    with Run(h5_path) as f:
+        if not f.complete:
             raise SystemExit(f"tagged.py: {h5_path} is an unfinished run (complete != 1)")
-        nb = int(f["bodies"].attrs["count"])
+        nb = f.n_bodies
         if len(kinds) != nb:
             raise SystemExit(f"tagged.py: {case_dir}/DATBOX/BODIES.DAT has {len(kinds)} bodies, "
                              f"fracas.h5 {nb}")
         is_disk = np.array(["DISKx" in k for k in kinds])
         is_wall = np.array([("JONCx" in k) and ("DISKx" not in k) for k in kinds])
-        mass = f["bodies/mass"][:]
-        radius = f["bodies/radius"][:]
-        ref = f["bodies/reference"][:]
+        mass = np.asarray(f.bodies["mass"], dtype=float)
+        radius = np.asarray(f.bodies["radius"], dtype=float)
+        ref = f.bodies["reference"]
 
         # -- series
-        s = f["series"]
-        cols = {k: s[k][:] for k in s}
-        n = min(len(v) for v in cols.values())
-        cols = {k: v[:n] for k, v in cols.items()}
+        cols = f.series
+        n = len(cols["step"])
         steps = cols["step"].astype(int)
         t = cols["time"]
         ke = cols["kinetic_energy"]
@@ -195,31 +192,29 @@ def compute_tags(run_dir, case=None, with_hash=False):
         ncont = cols["contacts"].astype(np.int64)
 
         # -- last snapshot (must be the last step)
-        names = sorted(f["snapshots"])
-        if not names:
+        if not f.snapshot_names:
             raise SystemExit("tagged.py: no snapshot in fracas.h5 (output_hdf5_every 0?)")
-        snap = f["snapshots"][names[-1]]
-        if int(snap.attrs["step"]) != int(steps[-1]):
-            raise SystemExit(f"tagged.py: last snapshot is step {int(snap.attrs['step'])}, the run "
+        snap = f.snapshot(-1)
+        if snap.step != int(steps[-1]):
+            raise SystemExit(f"tagged.py: last snapshot is step {snap.step}, the run "
                              f"ends at step {int(steps[-1])}: make output_hdf5_every divide "
                              f"number_of_steps")
-        X = snap["bodies/X"][:]
-        V = snap["bodies/V"][:]
-        c = snap["contacts"]
-        nc = int(c.attrs["count"])
+        X = snap.X
+        V = snap.V
+        c = snap.contacts
+        nc = len(c["cd_body"])
         pos = ref + X
         if nc:
-            cd = c["cd_body"][:] - 1
-            an = c["an_body"][:] - 1
+            cd = c["cd_body"] - 1
+            an = c["an_body"] - 1
             rt, rn = c["reaction"][:, 0], c["reaction"][:, 1]
-            nrm = c["normal"][:]
-            law = c["law"][:] - 1
+            nrm = c["normal"]
+            law = c["law"] - 1
         else:
             cd = an = law = np.zeros(0, int)
             rt = rn = np.zeros(0)
             nrm = np.zeros((0, 2))
-        mu_of_law = law_frictions(case_dir / "DATBOX" / "TACT_BEHAV.DAT",
-                                  list(f["help/law"].asstr()[:]))
+        mu_of_law = law_frictions(case_dir / "DATBOX" / "TACT_BEHAV.DAT", f.help.get("law", []))
 
         # initial positions (potential energy, floor): reference + DOF.INI displacements
         x0 = initial_displacements(case_dir / "DATBOX" / "DOF.INI", nb)
