@@ -29,13 +29,16 @@ module fracas_mailx
   private
   public :: mailx_t, mailx_build, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
-            mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_solver_summary, &
+            mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
             mailx_dense_max, mailx_gauss_values
 
   !> Bodies with at most this many dofs keep a dense inverse of A_ff (exploded
   !> elements, small meshes: the inverse is the contact compliance); larger
   !> ones a sparse factorization (see mailx_t%method).
   integer, parameter :: mailx_dense_max = 64
+  !> A large body's contact compliance is computed at once on all the nodes its
+  !> contactors hold when they are at most this many (a 2000 x 2000 matrix).
+  integer, parameter :: compliance_cap = 1000
 
   !> A large body: its element-matrix triplets (pattern fixed), stiffness and
   !> consistent mass for products, the factorization of A_ff, and the contact
@@ -90,6 +93,7 @@ module fracas_mailx
     ! A dense body's set is all its nodes in order and its compliance is dinv;
     ! a large body's set is big(b)%cnodes and its compliance big(b)%c.
     integer, allocatable :: cslot(:)
+    logical, allocatable :: contact_hint(:)    !< (nnodes) a contactor holds the node
     real(wp), allocatable :: eel(:), wpl(:)    !< (n) elastic energy and plastic work of the last element loop
     ! Energy (per unit thickness)
     real(wp) :: kinetic0 = 0.0_wp, elastic = 0.0_wp, plastic_work = 0.0_wp
@@ -779,8 +783,9 @@ contains
   subroutine compliance_sets_init(m)
     type(mailx_t), intent(inout) :: m
     integer :: b, j
-    allocate (m%cslot(m%nnodes))
+    allocate (m%cslot(m%nnodes), m%contact_hint(m%nnodes))
     m%cslot = 0
+    m%contact_hint = .false.
     do b = 1, m%n
       if (.not. m%dense(b)) cycle
       do j = m%node_first(b), m%node_first(b + 1) - 1
@@ -817,13 +822,15 @@ contains
   end function mailx_contact_set
 
   !> Make sure the compliance of every listed node's body covers that node:
-  !> large bodies whose set lacks a node get a new set (the old set and the
-  !> new nodes) and its compliance by solves with the factorization.
+  !> a large body whose set lacks a node gets a new set, the old one and the
+  !> new nodes and, once, every node the contacts may touch (contact_hint, up
+  !> to compliance_cap nodes), and its compliance by solves with the
+  !> factorization (all columns at once). A linear body so computes it once.
   subroutine mailx_require_compliance(m, nodes)
     type(mailx_t), intent(inout) :: m
     integer, intent(in) :: nodes(:)
-    integer :: k, b, j, ns
-    logical, allocatable :: grow(:)
+    integer :: k, b, j, ncand
+    logical, allocatable :: grow(:), wanted(:)
     integer, allocatable :: newset(:)
     allocate (grow(m%n))
     grow = .false.
@@ -833,45 +840,65 @@ contains
       if (m%cslot(nodes(k)) == 0 .or. .not. allocated(m%big(b)%c)) grow(b) = .true.
     end do
     if (.not. any(grow)) return
+    allocate (wanted(m%nnodes))
+    wanted = .false.
+    wanted(nodes) = .true.
     do b = 1, m%n
       if (.not. grow(b)) cycle
-      ! The new set: nodes of the old set and the listed nodes of b, in node order.
-      allocate (newset(0))
-      do j = m%node_first(b), m%node_first(b + 1) - 1
-        if (m%cslot(j) > 0 .or. any(nodes == j)) newset = [newset, j]
-      end do
+      ncand = count(m%contact_hint(m%node_first(b):m%node_first(b + 1) - 1))
+      newset = pack([(j, j=m%node_first(b), m%node_first(b + 1) - 1)], &
+                     m%cslot(m%node_first(b):m%node_first(b + 1) - 1) > 0 .or. &
+                     wanted(m%node_first(b):m%node_first(b + 1) - 1) .or. &
+                     (m%contact_hint(m%node_first(b):m%node_first(b + 1) - 1) .and. ncand <= compliance_cap))
       call set_compliance(m, b, newset)
-      deallocate (newset)
     end do
   contains
     subroutine set_compliance(m, b, set)
       type(mailx_t), intent(inout) :: m
       integer, intent(in) :: b, set(:)
-      integer :: i, d, col, nb
-      real(wp), allocatable :: e(:, :)
-      do i = m%node_first(b), m%node_first(b + 1) - 1
-        m%cslot(i) = 0
-      end do
+      integer :: i, d, ns, nd, n0
+      real(wp), allocatable :: e(:, :), ef(:, :)
       ns = size(set)
-      nb = m%node_first(b + 1) - m%node_first(b)
-      if (allocated(m%big(b)%c)) deallocate (m%big(b)%c)
-      allocate (m%big(b)%c(2 * ns, 2 * ns), e(2, nb))
+      n0 = m%node_first(b) - 1
+      nd = body_ndof(m, b)
+      m%cslot(n0 + 1:n0 + nd / 2) = 0
       do i = 1, ns
         m%cslot(set(i)) = i
       end do
+      ! columns: unit impulses at the set's dofs, solved together on the free dofs
+      allocate (e(nd, 2 * ns))
+      e = 0.0_wp
       do i = 1, ns
         do d = 1, 2
-          col = 2 * (i - 1) + d
-          e = 0.0_wp
-          e(d, set(i) - m%node_first(b) + 1) = 1.0_wp
-          call body_solve(m, b, 2 * nb, e)
-          m%big(b)%c(1:2 * ns:2, col) = e(1, set - m%node_first(b) + 1)
-          m%big(b)%c(2:2 * ns:2, col) = e(2, set - m%node_first(b) + 1)
+          e(2 * (set(i) - n0 - 1) + d, 2 * (i - 1) + d) = 1.0_wp
         end do
       end do
-      m%big(b)%cnodes = set
+      associate (bb => m%big(b))
+        ef = e(pack([(i, i=1, nd)], bb%free_of > 0), :)
+        call factor_solve(bb%f, ef)
+        e = 0.0_wp
+        do i = 1, nd
+          if (bb%free_of(i) > 0) e(i, :) = ef(bb%free_of(i), :)
+        end do
+        if (allocated(bb%c)) deallocate (bb%c)
+        allocate (bb%c(2 * ns, 2 * ns))
+        do i = 1, ns
+          bb%c(2 * i - 1, :) = e(2 * (set(i) - n0) - 1, :)
+          bb%c(2 * i, :) = e(2 * (set(i) - n0), :)
+        end do
+        bb%cnodes = set
+      end associate
     end subroutine set_compliance
   end subroutine mailx_require_compliance
+
+  !> Mark the nodes contacts may touch (the nodes of the meshes' contactors):
+  !> a large body's compliance then covers them all from the first contact.
+  subroutine mailx_set_contact_hint(m, nodes)
+    type(mailx_t), intent(inout) :: m
+    integer, intent(in) :: nodes(:)
+    m%contact_hint = .false.
+    m%contact_hint(nodes) = .true.
+  end subroutine mailx_set_contact_hint
 
   !> The contact dofs of body b: the number of nodes of its compliance set.
   !> Columns 2s-1 and 2s of its compliance matrix (x and y impulse at the

@@ -14,7 +14,7 @@ module fracas_nlgs
                         bm_rigid, bm_mesh
   use fracas_random, only: rng_t, rng_seed, rng_permute
   use fracas_rbdy2, only: rbdy2_t
-  use fracas_mailx, only: mailx_t, mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, &
+  use fracas_mailx, only: mailx_t, mailx_require_compliance, mailx_compliance_columns, &
                           mailx_contact_dofs, &
                           mailx_velocity_from_impulses
   use fracas_contacts, only: contacts_t
@@ -81,6 +81,11 @@ module fracas_nlgs
     real(wp), allocatable :: gc(:, :), gwt(:, :), gr(:, :)
     integer, allocatable :: moff(:)
     real(wp), allocatable :: mv(:)
+    ! The step's active nodes of each meshed body: a dense body's are all its
+    ! nodes, a large body's the nodes its contacts touch (its cached compliance
+    ! may cover more); anodes(abase(b)+1 .. abase(b)+nact(b)), aslot(node) the
+    ! node's place in its body's list (0: none).
+    integer, allocatable :: nact(:), abase(:), anodes(:), aslot(:)
   end type nlgs_t
 
 contains
@@ -246,7 +251,7 @@ contains
           ht_g = 0.0_wp; hn_g = 0.0_wp
           do i = 2 * s - 1, 2 * s
             wgt = sgn * c%mwt(i, k)
-            sl = 2 * m%cslot(c%mnode(i, k)) - 1
+            sl = 2 * solver%aslot(c%mnode(i, k)) - 1
             do j = 1, 2
               ht_g(j) = ht_g(j) + wgt * (t(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
                                          t(2) * solver%gmat(g0 + 2 * sl + j))
@@ -282,7 +287,7 @@ contains
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(in) :: c
     type(mailx_t), intent(inout) :: m
-    integer :: k, s, i, nnod, total, mb, g0, node
+    integer :: k, s, i, j, nnod, total, mb, g0, node, b, na
     integer, allocatable :: nodes(:)
     real(wp), allocatable :: cols(:, :)
     real(wp) :: t(2), nrm(2), sgn, wgt
@@ -296,6 +301,52 @@ contains
       end do
     end do
     call mailx_require_compliance(m, nodes(1:nnod))
+    ! Active nodes per body (see nlgs_t), those of the last call cleared first.
+    call clear_active(solver)
+    if (allocated(solver%aslot)) then
+      if (size(solver%aslot) /= m%nnodes) deallocate (solver%aslot, solver%nact, solver%abase)
+    end if
+    if (.not. allocated(solver%aslot)) then
+      allocate (solver%aslot(m%nnodes), solver%nact(m%n), solver%abase(m%n))
+      solver%aslot = 0
+    end if
+    solver%nact = 0
+    do k = 1, nnod
+      b = m%node_body(nodes(k))
+      if (m%dense(b)) then
+        solver%nact(b) = m%node_first(b + 1) - m%node_first(b)
+      else if (solver%aslot(nodes(k)) == 0) then
+        solver%nact(b) = solver%nact(b) + 1
+        solver%aslot(nodes(k)) = -1          ! counted, placed below
+      end if
+    end do
+    na = 0
+    do b = 1, m%n
+      solver%abase(b) = na
+      na = na + solver%nact(b)
+    end do
+    if (allocated(solver%anodes)) then
+      if (size(solver%anodes) < na) deallocate (solver%anodes)
+    end if
+    if (.not. allocated(solver%anodes)) allocate (solver%anodes(max(na, 16)))
+    solver%nact = 0
+    do k = 1, nnod
+      node = nodes(k)
+      b = m%node_body(node)
+      if (solver%aslot(node) > 0) cycle
+      if (m%dense(b)) then
+        if (solver%nact(b) > 0) cycle
+        do j = m%node_first(b), m%node_first(b + 1) - 1
+          solver%nact(b) = solver%nact(b) + 1
+          solver%anodes(solver%abase(b) + solver%nact(b)) = j
+          solver%aslot(j) = solver%nact(b)
+        end do
+      else
+        solver%nact(b) = solver%nact(b) + 1
+        solver%anodes(solver%abase(b) + solver%nact(b)) = node
+        solver%aslot(node) = solver%nact(b)
+      end if
+    end do
     if (allocated(solver%goff)) then
       if (size(solver%goff, 2) < c%n) deallocate (solver%goff, solver%gm)
     end if
@@ -307,7 +358,7 @@ contains
         solver%gm(s, k) = 0
         if (side_model(c, k, s) /= bm_mesh) cycle
         solver%goff(s, k) = total
-        solver%gm(s, k) = mailx_contact_dofs(m, side_body(c, k, s))
+        solver%gm(s, k) = 2 * solver%nact(side_body(c, k, s))
         total = total + 2 * solver%gm(s, k)
       end do
     end do
@@ -321,27 +372,42 @@ contains
       do s = 1, 2
         if (side_model(c, k, s) /= bm_mesh) cycle
         sgn = merge(1.0_wp, -1.0_wp, s == 1)
+        b = side_body(c, k, s)
         mb = solver%gm(s, k)
         g0 = solver%goff(s, k)
         solver%gmat(g0 + 1:g0 + 2 * mb) = 0.0_wp
         if (allocated(cols)) then
-          if (size(cols, 1) /= mb) deallocate (cols)
+          if (size(cols, 1) /= mailx_contact_dofs(m, b)) deallocate (cols)
         end if
-        if (.not. allocated(cols)) allocate (cols(mb, 2))
+        if (.not. allocated(cols)) allocate (cols(mailx_contact_dofs(m, b), 2))
         do i = 2 * s - 1, 2 * s
           node = c%mnode(i, k)
           wgt = sgn * c%mwt(i, k)
           if (wgt == 0.0_wp) cycle
           call mailx_compliance_columns(m, node, cols)
-          ! rows (G_t(i), G_n(i)) interleaved, as the mesh kernel reads them
-          solver%gmat(g0 + 1:g0 + 2 * mb:2) = solver%gmat(g0 + 1:g0 + 2 * mb:2) + &
-                                              wgt * (t(1) * cols(:, 1) + t(2) * cols(:, 2))
-          solver%gmat(g0 + 2:g0 + 2 * mb:2) = solver%gmat(g0 + 2:g0 + 2 * mb:2) + &
-                                              wgt * (nrm(1) * cols(:, 1) + nrm(2) * cols(:, 2))
+          ! rows of the active nodes; (G_t, G_n) interleaved, as the mesh kernel reads them
+          do j = 1, solver%nact(b)
+            associate (r1 => 2 * m%cslot(solver%anodes(solver%abase(b) + j)) - 1, q => g0 + 4 * j - 4)
+              solver%gmat(q + 1) = solver%gmat(q + 1) + wgt * (t(1) * cols(r1, 1) + t(2) * cols(r1, 2))
+              solver%gmat(q + 2) = solver%gmat(q + 2) + wgt * (nrm(1) * cols(r1, 1) + nrm(2) * cols(r1, 2))
+              solver%gmat(q + 3) = solver%gmat(q + 3) + wgt * (t(1) * cols(r1 + 1, 1) + t(2) * cols(r1 + 1, 2))
+              solver%gmat(q + 4) = solver%gmat(q + 4) + wgt * (nrm(1) * cols(r1 + 1, 1) + nrm(2) * cols(r1 + 1, 2))
+            end associate
+          end do
         end do
       end do
     end do
   end subroutine mesh_blocks
+
+  !> Clear the active-node marks of the step (aslot is kept zero between steps).
+  subroutine clear_active(solver)
+    type(nlgs_t), intent(inout) :: solver
+    integer :: b
+    if (.not. allocated(solver%nact)) return
+    do b = 1, size(solver%nact)
+      solver%aslot(solver%anodes(solver%abase(b) + 1:solver%abase(b) + solver%nact(b))) = 0
+    end do
+  end subroutine clear_active
 
   !> Solve the step's contact problem. On entry b%v = vfree (rigid), m%vfree
   !> (meshes), and c%r holds the warm start; on exit the velocities are
@@ -573,8 +639,9 @@ contains
               solver%gside(2 * sd, jg) = solver%goff(sd, k)
               solver%ggm(sd, jg) = solver%gm(sd, k)
               solver%gfirst(sd, jg) = solver%moff(side_body(c, k, sd)) + 1
-              solver%gslot(2 * sd - 1, jg) = solver%moff(side_body(c, k, sd)) + 2 * m%cslot(c%mnode(2 * sd - 1, k)) - 1
-              solver%gslot(2 * sd, jg) = solver%moff(side_body(c, k, sd)) + 2 * m%cslot(c%mnode(2 * sd, k)) - 1
+              solver%gslot(2 * sd - 1, jg) = solver%moff(side_body(c, k, sd)) + &
+                                             2 * solver%aslot(c%mnode(2 * sd - 1, k)) - 1
+              solver%gslot(2 * sd, jg) = solver%moff(side_body(c, k, sd)) + 2 * solver%aslot(c%mnode(2 * sd, k)) - 1
               solver%gwt(2 * sd - 1:2 * sd, jg) = merge(1.0_wp, -1.0_wp, sd == 1) * c%mwt(2 * sd - 1:2 * sd, k)
             end if
           end do
@@ -621,7 +688,6 @@ contains
     !> with a meshed side, on both their sides.
     subroutine pack_meshes()
       integer :: k, sd, bm, total, j, i, mb, g0, v0
-      integer, allocatable :: set(:)
       if (allocated(solver%moff)) then
         if (size(solver%moff) /= m%n) deallocate (solver%moff)
       end if
@@ -644,16 +710,9 @@ contains
       if (.not. allocated(solver%mv)) allocate (solver%mv(max(total, 16)))
       do bm = 1, m%n
         if (solver%moff(bm) < 0) cycle
-        if (m%dense(bm)) then      ! the contact set is all the body's nodes, in order
-          j = m%node_first(bm + 1) - m%node_first(bm)
-          solver%mv(solver%moff(bm) + 1:solver%moff(bm) + 2 * j) = &
-            reshape(m%vfree(:, m%node_first(bm):m%node_first(bm + 1) - 1), [2 * j])
-        else
-          set = mailx_contact_set(m, bm)
-          do j = 1, size(set)
-            solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, set(j))
-          end do
-        end if
+        do j = 1, solver%nact(bm)
+          solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, solver%anodes(solver%abase(bm) + j))
+        end do
       end do
       k = n
       if (allocated(solver%gidx)) then

@@ -11,7 +11,7 @@ module fracas_scene
                           rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
   use fracas_drives, only: drive_value
   use fracas_mailx, only: mailx_t, mailx_build, mailx_begin_step, mailx_detection_coor, mailx_converged, &
-                          mailx_end_step, mailx_kinetic_energy
+                          mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint
   use fracas_cracks, only: cracks_t, cracks_init, cracks_update
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
   use fracas_contact_laws, only: law_t, law_from_input, law_czm
@@ -160,6 +160,7 @@ contains
     end do
     sc%first_tactor(size(bodies) + 1) = k
     sc%contacts%with_mesh = sc%meshes%n > 0
+    if (sc%meshes%n > 0) call mailx_set_contact_hint(sc%meshes, sc%tactors%nodes)
     call cracks_init(sc%cracks, sc%tactors, sc%meshes)
     call detection_init(sc%det, sc%tactors, deck%see_rules, nick)
     allocate (sc%q(3, nb))
