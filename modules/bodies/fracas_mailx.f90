@@ -99,6 +99,7 @@ module fracas_mailx
     real(wp) :: kinetic0 = 0.0_wp, elastic = 0.0_wp, plastic_work = 0.0_wp
     real(wp) :: work_gravity = 0.0_wp, work_forces = 0.0_wp, work_supports = 0.0_wp
     integer :: iterations = 0                  !< Newton iterations of the last step
+    logical :: newton_converged = .true.       !< the last step's Newton loop met its tolerance
     logical :: driven_start_imposed = .true.   !< a driven dof starts a step at its imposed value
   end type mailx_t
 
@@ -659,12 +660,14 @@ contains
     integer, intent(in) :: max_iterations
     real(wp) :: unbalanced, scale
     done = .true.
+    m%newton_converged = .true.
     if (.not. m%any_nonlinear) return
     call mailx_iterate(m)
     unbalanced = sqrt(sum((m%res + m%imp)**2, mask=.not. m%driven))
     scale = sqrt(sum((m%h * m%fext)**2)) + sqrt(sum((m%h * m%fint)**2)) + sqrt(sum(m%imp**2)) + &
             sqrt(sum((m%mdiag * (m%v - m%vbegin))**2))
-    done = unbalanced <= tol * max(scale, tiny(1.0_wp)) .or. m%iterations > max_iterations
+    m%newton_converged = unbalanced <= tol * max(scale, tiny(1.0_wp))
+    done = m%newton_converged .or. m%iterations > max_iterations
   end function mailx_converged
 
   !> Detection configuration of the nodes: X_b + (1-θ) h V_b from the reference.

@@ -41,6 +41,7 @@ module fracas_scene
     real(wp) :: solve_seconds = 0.0_wp   !< NLGS sweeps
     real(wp) :: step_seconds = 0.0_wp    !< the whole step
     integer :: newton_iterations = 0     !< meshed bodies: Newton iterations of the step
+    logical :: newton_converged = .true. !< ... and whether their loop converged
   end type step_report_t
 
   type :: scene_t
@@ -343,6 +344,7 @@ contains
       end do
       call lap(rep%bodies_seconds)
       rep%newton_iterations = m%iterations
+      rep%newton_converged = m%newton_converged
       call nlgs_update_cohesive(c, sc%laws, sc%h, sc%time + sc%h, stored, coh_work, released)
       call cracks_update(sc%cracks, c, sc%laws, sc%steps_done == 0, sc%step + 1)
 
