@@ -51,6 +51,7 @@ module fracas_scene
     type(mailx_t) :: meshes                  !< meshed bodies (MAILx); n = 0 in a rigid scene
     real(wp) :: newton_tolerance = 1.0e-6_wp
     integer :: newton_max_iterations = 20
+    logical :: detection_approach = .true.
     type(tactors_t) :: tactors
     type(cracks_t) :: cracks                 !< cohesive interfaces of meshes (none without)
     type(law_t), allocatable :: laws(:)
@@ -92,6 +93,7 @@ contains
     sc%detection_frequency = max(1, deck%run%detection_frequency)
     sc%newton_tolerance = deck%run%newton_tolerance
     sc%newton_max_iterations = deck%run%newton_max_iterations
+    sc%detection_approach = deck%run%detection_approach
     bodies = deck%bodies
     sc%rigid_deck = pack([(ib, ib=1, size(bodies))], bodies%model /= 'MAILx')
     sc%mesh_deck = pack([(ib, ib=1, size(bodies))], bodies%model == 'MAILx')
@@ -274,26 +276,25 @@ contains
       end if
       call lap(rep%bodies_seconds)
       if (mod(sc%steps_done, sc%detection_frequency) == 0) then
-        ! Between rough detections bodies move at most about vmax h per step.
-        margin = 0.0_wp
-        if (sc%detection_frequency > 1) then
-          vmax = 0.0_wp
-          do k = 1, b%n
-            vmax = max(vmax, norm2(b%vbegin(1:2, k)) + abs(b%vbegin(3, k)) * b%avrd(k))
-          end do
-          if (m%nnodes > 0) vmax = max(vmax, maxval(norm2(m%vbegin, dim=1)))
-          margin = 2.0_wp * vmax * sc%h * sc%detection_frequency
-        end if
+        ! Between rough detections bodies move at most about vmax h per step,
+        ! and a pair closes by at most 2 vmax h within a step.
+        vmax = 0.0_wp
+        do k = 1, b%n
+          vmax = max(vmax, norm2(b%vfree(1:2, k)) + abs(b%vfree(3, k)) * b%avrd(k), &
+                     norm2(b%vbegin(1:2, k)) + abs(b%vbegin(3, k)) * b%avrd(k))
+        end do
+        if (m%nnodes > 0) vmax = max(vmax, maxval(norm2(m%vfree, dim=1)), maxval(norm2(m%vbegin, dim=1)))
+        margin = 2.0_wp * vmax * sc%h * sc%detection_frequency
         if (m%n > 0) then
           call detect_rough(sc%det, sc%tactors, sc%q, sc%movable, margin, sc%xn, m%movable)
         else
           call detect_rough(sc%det, sc%tactors, sc%q, sc%movable, margin)
         end if
       end if
-      if (m%n > 0) then
-        call detect_fine(sc%det, sc%tactors, sc%q, c, sc%xn)
+      if (sc%detection_approach) then
+        call detect_fine(sc%det, sc%tactors, sc%q, c, sc%xn, b%vfree, m%vfree, sc%h)
       else
-        call detect_fine(sc%det, sc%tactors, sc%q, c)
+        call detect_fine(sc%det, sc%tactors, sc%q, c, sc%xn)
       end if
       do k = 1, c%n
         pair_known = .false.
