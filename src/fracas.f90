@@ -6,6 +6,7 @@ program fracas
   use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged
   use fracas_deck, only: deck_t
   use fracas_read_deck, only: read_deck
+  use fracas_mailx, only: mailx_solver_summary
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
   use fracas_output, only: output_t, output_open, output_vtk, output_outbox, output_snapshot, &
                            output_series, output_close
@@ -89,6 +90,9 @@ contains
 
     call output_open(out, sc, deck, out_dir, overwrite)
     call set_cleanup(close_incomplete)
+    if (.not. quiet .and. sc%meshes%n > 0) write (output_unit, '(a,i0,a,i0,a,i0,a)') 'fracas: ', sc%meshes%n, &
+      ' meshed bodies (', sc%meshes%nnodes, ' nodes, ', sc%meshes%nelem, ' elements); iteration matrices: '// &
+      mailx_solver_summary(sc%meshes)
     if (deck%run%output_vtk_every > 0) call output_vtk(out, sc)
     every = deck%run%progress_every
     if (every <= 0) every = max(1, nsteps / 20)
