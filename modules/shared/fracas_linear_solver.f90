@@ -5,6 +5,7 @@
 !>   call factor_solve(f, b)                       ! b(n) or b(n, nrhs), overwritten by A^-1 b
 !>   call factor_update(f, a)                      ! new values, same pattern: numeric only
 !>   print *, factor_method_name(f)                ! e.g. 'CHOLMOD supernodal LL^T, METIS ordering, ...'
+!>   nnz = factor_nnz(f)                           ! stored entries of the factors (memory: 8 bytes each)
 !>   call factor_free(f)
 !>   call dense_spd_inverse(c [, ok])              ! c := c^-1 in place (small SPD blocks)
 !>
@@ -35,11 +36,14 @@ module fracas_linear_solver
   use fracas_sparse, only: sparse_t, sparse_to_dense, sparse_asymmetry
   implicit none
   private
-  public :: factor_t, factor_build, factor_update, factor_solve, factor_method_name, factor_free, &
-            dense_spd_inverse, auto_dense_max_n
+  public :: factor_t, factor_build, factor_update, factor_solve, factor_method_name, factor_nnz, &
+            factor_free, dense_spd_inverse, auto_dense_max_n
 
-  !> 'auto' uses dense LAPACK Cholesky up to this size, CHOLMOD above (measured crossover).
-  integer, parameter :: auto_dense_max_n = 200
+  !> 'auto' uses dense LAPACK Cholesky up to this size, CHOLMOD above. Measured with
+  !> Debian's reference BLAS (doc/benchmarks.md, "Linear solvers for meshed bodies"):
+  !> CHOLMOD solves faster from n ~ 18, refactorizes faster from n ~ 32 and factorizes
+  !> faster (ordering included) from n ~ 72-128; solves and refactorizations dominate.
+  integer, parameter :: auto_dense_max_n = 32
   !> Relative asymmetry above which 'auto' takes LU instead of Cholesky.
   real(wp), parameter :: symmetry_tolerance = 1.0e-10_wp
 
@@ -101,6 +105,10 @@ module fracas_linear_solver
       character(kind=c_char), intent(out) :: buf(*)
       integer(c_int), value :: len
     end subroutine fss_message
+    real(c_double) function fss_factor_nnz(handle) bind(C, name='fss_factor_nnz')
+      import :: c_ptr, c_double
+      type(c_ptr), value :: handle
+    end function fss_factor_nnz
     subroutine fss_free(handle) bind(C, name='fss_free')
       import :: c_ptr
       type(c_ptr), intent(inout) :: handle
@@ -287,6 +295,22 @@ contains
       name = '(no factor)'
     end select
   end function factor_method_name
+
+  !> Entries of the factors: n(n+1)/2 (dense Cholesky), n^2 (dense LU), nnz(L) (CHOLMOD),
+  !> nnz(L) + nnz(U) - n (UMFPACK).
+  real(wp) function factor_nnz(f)
+    type(factor_t), intent(in) :: f
+    select case (f%kind)
+    case (kind_dense_cholesky)
+      factor_nnz = 0.5_wp * real(f%n, wp) * real(f%n + 1, wp)
+    case (kind_dense_lu)
+      factor_nnz = real(f%n, wp)**2
+    case (kind_cholmod, kind_umfpack)
+      factor_nnz = real(fss_factor_nnz(f%handle), wp)
+    case default
+      factor_nnz = 0.0_wp
+    end select
+  end function factor_nnz
 
   subroutine factor_free(f)
     type(factor_t), intent(inout) :: f

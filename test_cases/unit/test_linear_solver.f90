@@ -2,8 +2,8 @@
 !> A = m I + K of fracas_test_matrices (SPD, cond(A) ~ 1 + 8 k/m = 801 here).
 !> Reference: a known solution x* (entries in [-1, 1]) and b = A x*; every method must
 !> return x with max |x - x*| / max |x*| <= 1e-10 (the bound cond(A) eps ~ 2e-13 with a
-!> wide margin). Sizes: 128 dofs (8 x 8 nodes: dense, 'auto' -> LAPACK) and 3200 dofs
-!> (40 x 40: CHOLMOD supernodal, UMFPACK, 'auto' -> CHOLMOD).
+!> wide margin). Sizes: 32 dofs (4 x 4 nodes: 'auto' -> LAPACK), 128 dofs (8 x 8:
+!> CHOLMOD simplicial) and 3200 dofs (40 x 40: CHOLMOD supernodal, UMFPACK, 'auto' -> CHOLMOD).
 !> Also: several right-hand sides, numeric refactorization with new values, an
 !> unsymmetric matrix (LU), an indefinite symmetric one ('auto' falls back to LU), the
 !> free-dof system A_ff x_f = b_f - A_fd x_d, and explicit inverses of 6..16 blocks.
@@ -19,18 +19,20 @@ program test_linear_solver
   implicit none
   real(wp), parameter :: tol = 1.0e-10_wp, mass = 1.0_wp, stiffness = 100.0_wp
   type(rng_t) :: rng
-  type(sparse_t) :: small, large
-  integer, allocatable :: map_large(:)
+  type(sparse_t) :: tiny, small, large
 
   call rng_seed(rng, 2024)
+  call lattice(4, 4, tiny)
   call lattice(8, 8, small)
-  call lattice(40, 40, large, map_large)
-  call check_true('auto_dense_max_n between the two test sizes', small%n <= auto_dense_max_n .and. large%n > auto_dense_max_n)
+  call lattice(40, 40, large)
+  call check_true('auto_dense_max_n: 32 dofs dense, 128 sparse', tiny%n <= auto_dense_max_n .and. small%n > auto_dense_max_n)
 
+  call solve_and_check(tiny, 'dense', 'LAPACK dpotrf')
+  call solve_and_check(tiny, 'auto', 'LAPACK dpotrf')
   call solve_and_check(small, 'dense', 'LAPACK dpotrf')
-  call solve_and_check(small, 'cholmod', 'CHOLMOD')
+  call solve_and_check(small, 'cholmod', 'CHOLMOD simplicial')
   call solve_and_check(small, 'umfpack', 'UMFPACK LU')
-  call solve_and_check(small, 'auto', 'LAPACK dpotrf')
+  call solve_and_check(small, 'auto', 'CHOLMOD')
   call solve_and_check(large, 'cholmod', 'CHOLMOD supernodal')
   call solve_and_check(large, 'cholmod', 'METIS ordering', 'metis')
   call solve_and_check(large, 'cholmod', 'AMD ordering', 'amd')
@@ -40,7 +42,7 @@ program test_linear_solver
   call refactorization('dense', 12, 12)
   call refactorization('cholmod', 40, 40)
   call refactorization('umfpack', 40, 40)
-  call refactorization('auto', 8, 8)
+  call refactorization('auto', 4, 4)
   call refactorization('auto', 40, 40)
 
   call unsymmetric()
@@ -141,7 +143,9 @@ contains
     call factor_free(f)
   end subroutine refactorization
 
-  !> A + S, S skew (convection-like, +-0.3 k on the x-coupling of horizontal neighbours).
+  !> A + S + U: S skew (convection-like, +-0.3 k on the x-coupling of horizontal
+  !> neighbours), U one-sided (-0.2 k from each x-dof to the x-dof two nodes to the right,
+  !> outside the symmetric pattern).
   subroutine unsymmetric()
     integer :: sizes(2), s, nx, i, j, a_dof, b_dof, t
     integer, allocatable :: rows(:), cols(:)
@@ -151,7 +155,7 @@ contains
     character(len=16) :: method
     character(len=:), allocatable :: expect
     integer :: m
-    sizes = [8, 40]
+    sizes = [4, 40]
     do s = 1, 2
       nx = sizes(s)
       call lattice_triplets(nx, nx, mass, stiffness, rows, cols, vals)
@@ -166,6 +170,13 @@ contains
           rows(t + 1) = a_dof; cols(t + 1) = b_dof; vals(t + 1) = 0.3_wp * stiffness
           rows(t + 2) = b_dof; cols(t + 2) = a_dof; vals(t + 2) = -0.3_wp * stiffness
           t = t + 2
+        end do
+      end do
+      ! One-sided entries (x-dof to the x-dof two nodes right): the pattern is unsymmetric too.
+      do j = 1, nx
+        do i = 1, nx - 2
+          a_dof = 2 * (i + (j - 1) * nx) - 1
+          rows = [rows, a_dof]; cols = [cols, a_dof + 4]; vals = [vals, -0.2_wp * stiffness]
         end do
       end do
       call sparse_from_triplets(2 * nx * nx, rows, cols, vals, a)
@@ -199,7 +210,7 @@ contains
     integer :: s, nx
     character(len=:), allocatable :: expect
     do s = 1, 2
-      nx = merge(8, 40, s == 1)
+      nx = merge(4, 40, s == 1)
       call lattice(nx, nx, a, m=-1.0e-4_wp * stiffness)
       expect = merge('LAPACK dgetrf', 'UMFPACK LU   ', s == 1)
       allocate (xstar(a%n), b(a%n))
