@@ -23,7 +23,7 @@ program linear_solver_bench
   use fracas_errors, only: fatal
   implicit none
   integer, parameter :: sides(*) = [2, 3, 4, 5, 6, 7, 8, 9, 10, 12, 14, 16, 20, 25, 32, 40, 50, 64, 80, 100, &
-                                    130, 160, 200, 250, 317]
+                                    130, 160, 200, 250, 316]
   character(len=*), parameter :: methods(5) = ['dense        ', 'cholmod-metis', 'cholmod-amd  ', &
                                                'cholmod-best ', 'umfpack      ']
   real(wp), parameter :: budget = 0.3_wp, long_budget = 2.0_wp

@@ -44,6 +44,8 @@ module fracas_linear_solver
   !> CHOLMOD solves faster from n ~ 18, refactorizes faster from n ~ 32 and factorizes
   !> faster (ordering included) from n ~ 72-128; solves and refactorizations dominate.
   integer, parameter :: auto_dense_max_n = 32
+  !> Largest n for a dense factorization (8 n^2 bytes: 8.6 GB).
+  integer, parameter :: dense_limit_n = 32768
   !> Relative asymmetry above which 'auto' takes LU instead of Cholesky.
   real(wp), parameter :: symmetry_tolerance = 1.0e-10_wp
 
@@ -395,6 +397,7 @@ contains
     type(sparse_t), intent(in) :: a
     character(len=:), allocatable, intent(out) :: why
     integer :: info
+    call check_dense_size(a%n)
     call sparse_to_dense(a, f%dense)
     f%kind = kind_dense_cholesky
     why = ''
@@ -409,6 +412,7 @@ contains
     type(sparse_t), intent(in) :: a
     character(len=:), allocatable, intent(out) :: why
     integer :: info
+    call check_dense_size(a%n)
     call sparse_to_dense(a, f%dense)
     if (allocated(f%ipiv)) deallocate (f%ipiv)
     allocate (f%ipiv(a%n))
@@ -419,6 +423,14 @@ contains
     if (info > 0) why = 'LAPACK dgetrf (dense LU): matrix singular (zero pivot at column '// &
                         itoa(info)//' of '//itoa(a%n)//')'
   end subroutine dense_lu
+
+  !> A dense copy of n x n doubles above 8 GB is a mistake, not a plan: say so.
+  subroutine check_dense_size(n)
+    integer, intent(in) :: n
+    if (n > dense_limit_n) call fatal('factor_build: a dense factorization of n = '//itoa(n)// &
+                                      ' unknowns needs '//itoa(int(8.0_wp * real(n, wp)**2 / 1.0e9_wp))// &
+                                      ' GB; use the method cholmod (or auto)')
+  end subroutine check_dense_size
 
   !> Symbolic analysis and numeric factorization through the C shim (CHOLMOD or UMFPACK),
   !> replacing whatever f held.

@@ -3,7 +3,8 @@
 !> Reference: a known solution x* (entries in [-1, 1]) and b = A x*; every method must
 !> return x with max |x - x*| / max |x*| <= 1e-10 (the bound cond(A) eps ~ 2e-13 with a
 !> wide margin). Sizes: 32 dofs (4 x 4 nodes: 'auto' -> LAPACK), 128 dofs (8 x 8:
-!> CHOLMOD simplicial) and 3200 dofs (40 x 40: CHOLMOD supernodal, UMFPACK, 'auto' -> CHOLMOD).
+!> CHOLMOD simplicial), 3200 dofs (40 x 40: CHOLMOD simplicial, UMFPACK, 'auto' -> CHOLMOD)
+!> and the 3D lattice on 12 x 12 x 12 nodes (5184 dofs: CHOLMOD supernodal).
 !> Also: several right-hand sides, numeric refactorization with new values, an
 !> unsymmetric matrix (LU), an indefinite symmetric one ('auto' falls back to LU), the
 !> free-dof system A_ff x_f = b_f - A_fd x_d, and explicit inverses of 6..16 blocks.
@@ -19,12 +20,13 @@ program test_linear_solver
   implicit none
   real(wp), parameter :: tol = 1.0e-10_wp, mass = 1.0_wp, stiffness = 100.0_wp
   type(rng_t) :: rng
-  type(sparse_t) :: tiny, small, large
+  type(sparse_t) :: tiny, small, large, cube
 
   call rng_seed(rng, 2024)
   call lattice(4, 4, tiny)
   call lattice(8, 8, small)
   call lattice(40, 40, large)
+  call lattice(12, 12, cube, nz=12)
   call check_true('auto_dense_max_n: 32 dofs dense, 128 sparse', tiny%n <= auto_dense_max_n .and. small%n > auto_dense_max_n)
 
   call solve_and_check(tiny, 'dense', 'LAPACK dpotrf')
@@ -33,7 +35,8 @@ program test_linear_solver
   call solve_and_check(small, 'cholmod', 'CHOLMOD simplicial')
   call solve_and_check(small, 'umfpack', 'UMFPACK LU')
   call solve_and_check(small, 'auto', 'CHOLMOD')
-  call solve_and_check(large, 'cholmod', 'CHOLMOD supernodal')
+  call solve_and_check(large, 'cholmod', 'CHOLMOD simplicial')
+  call solve_and_check(cube, 'cholmod', 'CHOLMOD supernodal')
   call solve_and_check(large, 'cholmod', 'METIS ordering', 'metis')
   call solve_and_check(large, 'cholmod', 'AMD ordering', 'amd')
   call solve_and_check(large, 'umfpack', 'UMFPACK LU, symmetric strategy')
@@ -44,6 +47,7 @@ program test_linear_solver
   call refactorization('umfpack', 40, 40)
   call refactorization('auto', 4, 4)
   call refactorization('auto', 40, 40)
+  call refactorization('cholmod', 12, 12, 12)
 
   call unsymmetric()
   call indefinite()
@@ -53,8 +57,9 @@ program test_linear_solver
 
 contains
 
-  subroutine lattice(nx, ny, a, map, seed, m)
+  subroutine lattice(nx, ny, a, map, seed, m, nz)
     integer, intent(in) :: nx, ny
+    integer, intent(in), optional :: nz
     type(sparse_t), intent(out) :: a
     integer, allocatable, intent(out), optional :: map(:)
     integer, intent(in), optional :: seed
@@ -64,8 +69,8 @@ contains
     real(wp) :: m_
     m_ = mass
     if (present(m)) m_ = m
-    call lattice_triplets(nx, ny, m_, stiffness, rows, cols, vals, seed)
-    call sparse_from_triplets(2 * nx * ny, rows, cols, vals, a, map)
+    call lattice_triplets(nx, ny, m_, stiffness, rows, cols, vals, seed, nz)
+    call sparse_from_triplets(maxval(rows), rows, cols, vals, a, map)
   end subroutine lattice
 
   subroutine random_vector(x)
@@ -114,19 +119,20 @@ contains
 
   !> Factor with the seed-1 bar stiffnesses, refill with seed 2 on the same triplet list,
   !> factor_update, solve: the answer matches the new matrix, not the old one.
-  subroutine refactorization(method, nx, ny)
+  subroutine refactorization(method, nx, ny, nz)
     character(len=*), intent(in) :: method
     integer, intent(in) :: nx, ny
+    integer, intent(in), optional :: nz
     type(sparse_t) :: a
     type(factor_t) :: f
     integer, allocatable :: map(:), rows(:), cols(:)
     real(wp), allocatable :: vals(:), xstar(:), b(:), x_old(:)
     character(len=:), allocatable :: name, label
-    call lattice(nx, ny, a, map, seed=1)
+    call lattice(nx, ny, a, map, seed=1, nz=nz)
     label = 'update '//method//' n='//itoa(a%n)
     call factor_build(f, a, method)
     name = factor_method_name(f)
-    call lattice_triplets(nx, ny, 3.0_wp, stiffness, rows, cols, vals, seed=2)
+    call lattice_triplets(nx, ny, 3.0_wp, stiffness, rows, cols, vals, seed=2, nz=nz)
     call sparse_refill(a, map, vals)
     allocate (xstar(a%n), b(a%n))
     call random_vector(xstar)
