@@ -3,7 +3,7 @@
 program fracas
   use, intrinsic :: iso_fortran_env, only: output_unit, int64
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, warn
+  use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged
   use fracas_deck, only: deck_t
   use fracas_read_deck, only: read_deck
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
@@ -20,7 +20,7 @@ program fracas
   type(scene_t) :: sc
   type(output_t) :: out
   type(step_report_t) :: rep
-  integer :: i, nargs, nsteps, istep, every, total_sweeps, unconverged, late
+  integer :: i, nargs, nsteps, istep, every, total_sweeps, unconverged, late, hdf5_every, first_unconverged
   real(wp) :: late_max
   integer(int64) :: t0, t1, rate
   real(wp) :: elapsed, worst_residual
@@ -54,6 +54,8 @@ contains
       case ('--set')
         i = i + 1
         settings = [character(len=1024) :: settings, argument_value(i, arg)]
+      case ('--fail-unconverged')
+        settings = [character(len=1024) :: settings, 'nlgs_unconverged=fail']
       case ('--version')
         write (output_unit, '(a)') 'fracas '//version_string
         return
@@ -80,29 +82,33 @@ contains
     call scene_build(deck, sc)
     nsteps = deck%run%number_of_steps
     if (check_only) then
-      write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'check: OK (', sc%bodies%n, ' bodies, ', sc%tactors%n, &
+      write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'check: OK (', sc%bodies%n + sc%meshes%n, ' bodies, ', sc%tactors%n, &
         ' contactors, ', size(sc%laws), ' contact laws, ', nsteps, ' steps)'
       return
     end if
 
-    call output_open(out, sc, out_dir, case_dir, overwrite, deck%run%output_vtk_every > 0, .true.)
+    call output_open(out, sc, deck, out_dir, overwrite)
+    call set_cleanup(close_incomplete)
     if (deck%run%output_vtk_every > 0) call output_vtk(out, sc)
     every = deck%run%progress_every
     if (every <= 0) every = max(1, nsteps / 20)
+    hdf5_every = deck%run%output_hdf5_every
+    if (hdf5_every < 0) hdf5_every = max(1, nsteps / 100)   ! not given: about 100 snapshots
     total_sweeps = 0; unconverged = 0; worst_residual = 0.0_wp; late = 0; late_max = 0.0_wp
+    first_unconverged = 0
     call system_clock(t0, rate)
     do istep = 1, nsteps
       call scene_step(sc, rep)
       total_sweeps = total_sweeps + rep%nlgs%sweeps
-      if (.not. rep%nlgs%converged) unconverged = unconverged + 1
       worst_residual = max(worst_residual, rep%nlgs%residual)
       late = late + rep%late_contacts
       late_max = max(late_max, rep%late_overlap)
       call output_series(out, sc, rep)
       if (every_n(deck%run%output_vtk_every)) call output_vtk(out, sc)
-      if (every_n(deck%run%output_hdf5_every)) call output_snapshot(out, sc)
+      if (every_n(hdf5_every)) call output_snapshot(out, sc)
       if (every_n(deck%run%output_dof_every) .or. (deck%run%output_dof_every == 0 .and. istep == nsteps)) &
         call output_outbox(out, sc)
+      if (.not. rep%nlgs%converged) call not_converged()
       if (.not. quiet .and. (mod(istep, every) == 0 .or. istep == nsteps)) call progress()
     end do
     call output_close(out)
@@ -124,13 +130,55 @@ contains
     end if
     if (unconverged > 0) then
       block
-        character(len=64) :: msg
-        write (msg, '(i0,a)') unconverged, ' steps reached the NLGS sweep limit without converging'
+        character(len=200) :: msg
+        write (msg, '(i0,a,i0,a,i0,a)') unconverged, ' of ', nsteps, ' steps reached the NLGS sweep limit without '// &
+          'converging (the first: step ', first_unconverged, '; OUTBOX/fracas.h5 series/converged = 0 marks them)'
+        if (deck%run%nlgs_unconverged == 'fail') call stop_run(trim(msg)//' (nlgs_unconverged = fail)', &
+                                                              exit_unconverged)
         call warn(trim(msg))
       end block
     end if
 
   end subroutine main
+
+  !> A step reached the sweep limit: say so (each of the first ones, then
+  !> every progress line counts them), and stop if the run control says so.
+  subroutine not_converged()
+    integer, parameter :: told_max = 10
+    character(len=300) :: msg
+    unconverged = unconverged + 1
+    if (first_unconverged == 0) first_unconverged = sc%step
+    write (msg, '(a,i0,a,es11.4,a,i0,a,es9.2,a)') 'step ', sc%step, ' (t=', sc%time, '): NLGS did not converge in ', &
+      rep%nlgs%sweeps, ' sweeps (', check_norm(), ' / tolerance at the last check; converged below 1)'
+    if (deck%run%nlgs_unconverged == 'stop') then
+      call output_close(out, complete=.false., end_reason=trim(msg)//'; stopped: nlgs_unconverged = stop')
+      call stop_run(trim(msg)//'. The run stops (nlgs_unconverged = stop); '//out_dir// &
+                    '/OUTBOX/fracas.h5 holds the steps up to this one', exit_unconverged)
+    end if
+    if (quiet) return
+    if (unconverged <= told_max) then
+      write (output_unit, '(a)') 'fracas: '//trim(msg)
+      if (unconverged == told_max) write (output_unit, '(a)') 'fracas: (further unconverged steps are counted '// &
+        'in the progress lines)'
+      flush (output_unit)
+    end if
+  end subroutine not_converged
+
+  !> The norm the convergence check uses, over the tolerance.
+  real(wp) function check_norm()
+    select case (deck%run%nlgs_check)
+    case ('Maxm ')
+      check_norm = max(rep%nlgs%maxm_dv, rep%nlgs%maxm_dvr, abs(rep%nlgs%mean_dvor))
+    case default
+      check_norm = max(rep%nlgs%quad_dv, rep%nlgs%quad_dvr, abs(rep%nlgs%mean_dvor))
+    end select
+  end function check_norm
+
+  !> Clean-up on a fatal error once the output is open: fracas.h5 is closed
+  !> with complete = 0, so that no reader takes it for a finished run.
+  subroutine close_incomplete()
+    call output_close(out, complete=.false.)
+  end subroutine close_incomplete
 
   !> True every n steps (never for n = 0).
   logical function every_n(n)
@@ -144,9 +192,12 @@ contains
     call system_clock(t1)
     el = real(t1 - t0, wp) / real(rate, wp)
     remaining = el / istep * (nsteps - istep)
-    write (output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,i0,a,es9.2,a,f0.1,a,f0.1,a)') 'step ', istep, '/', nsteps, &
-      '  t=', sc%time, '  contacts ', rep%contacts, '  sweeps ', rep%nlgs%sweeps, '  residual ', &
+    write (output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,i0,a,es9.2,a,f0.1,a,f0.1,a)', advance='no') 'step ', istep, '/', &
+      nsteps, '  t=', sc%time, '  contacts ', rep%contacts, '  sweeps ', rep%nlgs%sweeps, '  residual ', &
       rep%nlgs%residual, '  elapsed ', el, ' s  remaining ', remaining, ' s'
+    if (.not. rep%nlgs%converged) write (output_unit, '(a)', advance='no') '  NOT CONVERGED'
+    if (unconverged > 0) write (output_unit, '(a,i0)', advance='no') '  unconverged steps ', unconverged
+    write (output_unit, '(a)') ''
     flush (output_unit)
   end subroutine progress
 
@@ -159,10 +210,20 @@ contains
       'options:', &
       '  --check            read and validate the deck, run nothing', &
       '  --command FILE     run-control deck to use instead of CASE_DIR/DATBOX/COMMAND.DAT', &
-      '  --set KEY=VALUE    override one COMMAND.DAT setting (repeatable)', &
+      '  --set KEY=VALUE    override one COMMAND.DAT setting (repeatable); without a', &
+      '                     COMMAND.DAT (LMGC90 decks), --set time_step=H --set number_of_steps=N', &
+      '                     is enough: every other setting has a default', &
+      '  --fail-unconverged the same as --set nlgs_unconverged=fail', &
       '  --output DIR       write OUTBOX/ and DISPLAY/ under DIR instead of CASE_DIR', &
       '  --overwrite        replace results already present', &
       '  --quiet, -q        no progress lines', &
-      '  --version, --help'
+      '  --version, --help', &
+      'exit status:', &
+      '  0  the run (or the check) went through', &
+      '  1  an error was reported (bad input, a failure during the run)', &
+      '  2  an error of the Fortran run-time library (a bug: please report it)', &
+      '  3  NLGS steps did not converge and nlgs_unconverged is fail (the run went to', &
+      '     its end) or stop (the run stopped at the first such step)', &
+      '  a signal (e.g. 137 for SIGKILL): fracas.h5 keeps complete = 0'
   end subroutine usage
 end program fracas

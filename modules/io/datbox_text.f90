@@ -16,7 +16,7 @@ module fracas_datbox_text
   private
   public :: text_line_t, text_file_t, load_text, line_error, &
             field, is_blank, keyword_of, is_data, get_real, get_int, get_word, &
-            parse_real, parse_int, lower, upper, itoa, rtoa, cols, get_steps
+            parse_real, parse_int, lower, upper, itoa, rtoa, cols, get_steps, edit_distance
 
   !> One data line: its text (trailing blanks removed) and where it was read.
   type :: text_line_t
@@ -424,4 +424,19 @@ contains
     write (buf, '(es12.5)') x
     s = trim(adjustl(buf))
   end function rtoa
+
+  !> Levenshtein distance (for "did you mean" suggestions).
+  pure integer function edit_distance(a, b) result(d)
+    character(len=*), intent(in) :: a, b
+    integer :: prev(0:len(b)), cur(0:len(b)), i, j
+    prev = [(j, j=0, len(b))]
+    do i = 1, len(a)
+      cur(0) = i
+      do j = 1, len(b)
+        cur(j) = min(prev(j) + 1, cur(j - 1) + 1, prev(j - 1) + merge(0, 1, a(i:i) == b(j:j)))
+      end do
+      prev = cur
+    end do
+    d = prev(len(b))
+  end function edit_distance
 end module fracas_datbox_text
