@@ -4,17 +4,19 @@
 !>   call factor_build(f, a, method [, ordering])  ! method 'auto' | 'dense' | 'cholmod' | 'umfpack'
 !>   call factor_solve(f, b)                       ! b(n) or b(n, nrhs), overwritten by A^-1 b
 !>   call factor_update(f, a)                      ! new values, same pattern: numeric only
-!>   print *, factor_method_name(f)                ! e.g. 'CHOLMOD supernodal LL^T, METIS ordering, ...'
+!>   print *, factor_method_name(f)                ! e.g. 'CHOLMOD simplicial LL^T, METIS ordering, n = .., nnz(L) = ..'
 !>   nnz = factor_nnz(f)                           ! stored entries of the factors (memory: 8 bytes each)
 !>   call factor_free(f)
 !>   call dense_spd_inverse(c [, ok])              ! c := c^-1 in place (small SPD blocks)
 !>
 !> Methods:
 !> * 'dense': LAPACK Cholesky (dpotrf/dpotrs) of the dense copy (upper triangle read).
-!> * 'cholmod': CHOLMOD sparse Cholesky (upper triangle read), supernodal or simplicial
-!>   as CHOLMOD judges (both LL^T), with a fill-reducing ordering: `ordering` = 'best'
-!>   (default: METIS and AMD both tried, the one with less fill kept), 'metis' (AMD if
-!>   METIS fails) or 'amd'.
+!> * 'cholmod': CHOLMOD sparse Cholesky LL^T (upper triangle read), simplicial, or
+!>   supernodal when the factorization costs more than 300 flops per entry of L (3D
+!>   meshes; 2D meshes up to ~2e5 unknowns stay simplicial, which is faster there with
+!>   the reference BLAS), with a fill-reducing ordering: `ordering` = 'best' (default:
+!>   METIS and AMD both tried, the one with less fill kept), 'metis' (AMD if METIS
+!>   fails) or 'amd'.
 !> * 'umfpack': UMFPACK sparse LU (any nonsingular matrix; ordering as above, 'best'
 !>   meaning UMFPACK's own choice).
 !> * 'auto': dense for n <= auto_dense_max_n (measured: doc/benchmarks.md, "Linear solvers
