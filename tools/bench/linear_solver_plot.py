@@ -18,6 +18,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+AUTO_DENSE_MAX_N = 32  # fracas_linear_solver's auto_dense_max_n
 TIME_COLUMNS = ["t_assemble", "t_refill", "t_build", "t_update", "t_solve1", "t_solve10_per_rhs"]
 LABELS = {
     "dense": "dense LAPACK dpotrf",
@@ -73,9 +74,11 @@ def main(argv):
         for m in methods:
             pts = sorted((n, r[metric]) for (mm, n), r in rows.items() if mm == m)
             ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", ms=3, label=LABELS[m])
+        ax.axvline(AUTO_DENSE_MAX_N, color="grey", ls="--", lw=1)
         ax.set_title(title)
         ax.set_xlabel("unknowns n (2D lattice, Q4 pattern)")
         ax.grid(True, which="both", alpha=0.3)
+    axes[0].text(AUTO_DENSE_MAX_N * 1.1, axes[0].get_ylim()[1] / 3, "auto: dense up to here", fontsize=8, color="grey")
     axes[0].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
