@@ -27,6 +27,8 @@ program linear_solver_bench
   character(len=*), parameter :: methods(5) = ['dense        ', 'cholmod-metis', 'cholmod-amd  ', &
                                                'cholmod-best ', 'umfpack      ']
   real(wp), parameter :: budget = 0.3_wp, long_budget = 2.0_wp
+  integer, parameter :: task_assemble = 1, task_refill = 2, task_build = 3, task_update = 4, task_solve1 = 5, &
+                        task_solve10 = 6
   integer :: min_n = 0, max_n = 200000, dense_max_n = 2048, csv_unit = 0
   integer :: s, m, nx, n, i, k
   character(len=:), allocatable :: arg, csv
@@ -69,9 +71,9 @@ program linear_solver_bench
     if (n < min_n) cycle
     call lattice_triplets(nx, nx, 1.0_wp, 100.0_wp, rows, cols, vals, seed=1)
     call lattice_triplets(nx, nx, 1.0_wp, 100.0_wp, rows, cols, vals2, seed=2)
-    t_assemble = best_time(time_assemble)
+    t_assemble = best_time(task_assemble)
     call sparse_from_triplets(n, rows, cols, vals, a, map)
-    t_refill = best_time(time_refill)
+    t_refill = best_time(task_refill)
     call sparse_refill(a, map, vals)
     if (allocated(xstar)) deallocate (xstar, b, b1)
     allocate (xstar(n, 10), b(n, 10), b1(n))
@@ -82,12 +84,12 @@ program linear_solver_bench
     end do
     do m = 1, size(methods)
       if (trim(methods(m)) == 'dense' .and. n > dense_max_n) cycle
-      t_build = best_time(time_build)
+      t_build = best_time(task_build)
       call build(f)
       name = factor_method_name(f)
-      t_update = best_time(time_update)
-      t_solve1 = best_time(time_solve1)
-      t_solve10 = best_time(time_solve10) / 10
+      t_update = best_time(task_update)
+      t_solve1 = best_time(task_solve1)
+      t_solve10 = best_time(task_solve10) / 10
       ! Error of the last solve10 (b = A x*).
       do k = 1, 10
         call sparse_matvec(a, xstar(:, k), b(:, k))
@@ -120,46 +122,39 @@ contains
     end select
   end subroutine build
 
-  subroutine time_assemble()
+  !> One call of the timed task (a task code, not a procedure argument: internal
+  !> procedures passed as arguments would need an executable stack).
+  subroutine run_task(task)
+    integer, intent(in) :: task
     type(sparse_t) :: tmp
-    call sparse_from_triplets(n, rows, cols, vals, tmp, map)
-  end subroutine time_assemble
-
-  subroutine time_refill()
-    call sparse_refill(a, map, vals2)
-  end subroutine time_refill
-
-  subroutine time_build()
     type(factor_t) :: g
-    call build(g)
-    call factor_free(g)
-  end subroutine time_build
+    select case (task)
+    case (task_assemble)
+      call sparse_from_triplets(n, rows, cols, vals, tmp, map)
+    case (task_refill)
+      call sparse_refill(a, map, vals2)
+    case (task_build)
+      call build(g)
+      call factor_free(g)
+    case (task_update)
+      call factor_update(f, a)
+    case (task_solve1)
+      b1 = xstar(:, 1)
+      call factor_solve(f, b1)
+    case (task_solve10)
+      b = xstar
+      call factor_solve(f, b)
+    end select
+  end subroutine run_task
 
-  subroutine time_update()
-    call factor_update(f, a)
-  end subroutine time_update
-
-  subroutine time_solve1()
-    b1 = xstar(:, 1)
-    call factor_solve(f, b1)
-  end subroutine time_solve1
-
-  subroutine time_solve10()
-    b = xstar
-    call factor_solve(f, b)
-  end subroutine time_solve10
-
-  !> Best CPU time per call of work() (see the header): calls are timed in batches long
+  !> Best CPU time per call of the task (see the header): calls are timed in batches long
   !> enough for the clock (>= 2 ms), the best batch is kept.
-  real(wp) function best_time(work) result(best)
-    interface
-      subroutine work()
-      end subroutine work
-    end interface
+  real(wp) function best_time(task) result(best)
+    integer, intent(in) :: task
     real(wp) :: spent, t0, t1, t
     integer :: batches, reps, r
     call cpu_time(t0)
-    call work()
+    call run_task(task)
     call cpu_time(t1)
     best = t1 - t0
     spent = best
@@ -168,7 +163,7 @@ contains
     do while ((batches < 3 .or. spent < budget) .and. batches < 200 .and. .not. (batches >= 2 .and. spent > long_budget))
       call cpu_time(t0)
       do r = 1, reps
-        call work()
+        call run_task(task)
       end do
       call cpu_time(t1)
       t = (t1 - t0) / reps
