@@ -148,8 +148,8 @@ contains
     character(len=300) :: msg
     unconverged = unconverged + 1
     if (first_unconverged == 0) first_unconverged = sc%step
-    write (msg, '(a,i0,a,es11.4,a,i0,a,es9.2,a)') 'step ', sc%step, ' (t=', sc%time, '): NLGS did not converge in ', &
-      rep%nlgs%sweeps, ' sweeps (', check_norm(), ' / tolerance at the last check; converged below 1)'
+    write (msg, '(a,i0,a,es11.4,a,i0,a,es8.2,a)') 'step ', sc%step, ' (t=', sc%time, '): NLGS did not converge in ', &
+      rep%nlgs%sweeps, ' sweeps (norm/tolerance ', check_norm(), ' at the last check, below 1 needed)'
     if (deck%run%nlgs_unconverged == 'stop') then
       call output_close(out, complete=.false., end_reason=trim(msg)//'; stopped: nlgs_unconverged = stop')
       call stop_run(trim(msg)//'. The run stops (nlgs_unconverged = stop); '//out_dir// &
