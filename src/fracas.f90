@@ -8,7 +8,7 @@ program fracas
   use fracas_read_deck, only: read_deck
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
   use fracas_output, only: output_t, output_open, output_vtk, output_outbox, output_snapshot, &
-                           output_series, output_close
+                           output_series, output_close, output_summary
   use fracas_version, only: version_string
   use fracas_command_line, only: argument_value
   implicit none
@@ -117,6 +117,7 @@ contains
       elapsed = real(t1 - t0, wp) / real(rate, wp)
       write (output_unit, '(a,i0,a,f0.3,a,i0,a,es9.2)') 'fracas: done: ', nsteps, ' steps in ', elapsed, &
         ' s, ', total_sweeps, ' NLGS sweeps, worst natural-map residual ', worst_residual
+      write (output_unit, '(a)') 'fracas: output: '//output_summary(out)
       write (output_unit, '(a)') 'fracas: results: '//out_dir//'/OUTBOX/fracas.h5'
       if (deck%run%output_vtk_every > 0) write (output_unit, '(a)') 'fracas: ParaView: '//out_dir//'/DISPLAY/fracas.pvd'
     end if

@@ -30,7 +30,7 @@ module fracas_output
   implicit none
   private
   public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
-            output_flush, output_close, series_names, output_owns
+            output_flush, output_close, series_names, output_owns, output_summary
 
   integer, parameter :: n_series = 23
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
@@ -56,7 +56,13 @@ module fracas_output
     logical :: h5_open = .false.
     type(postpro_t) :: pp
     integer(i8) :: last_flush = 0
+    !> Wall time spent writing, and writes, per kind: VTK frames, HDF5 snapshots,
+    !> DOF/Vloc_Rloc files, series rows (with POSTPRO lines).
+    real(wp) :: seconds(4) = 0.0_wp
+    integer :: writes(4) = 0
   end type output_t
+
+  integer, parameter :: k_vtk = 1, k_snapshot = 2, k_outbox = 3, k_series = 4
 
 contains
 
@@ -297,6 +303,8 @@ contains
     type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
     character(len=6) :: num
+    integer(i8) :: t0
+    call system_clock(t0)
     o%n_vtk = o%n_vtk + 1
     write (num, '(i6.6)') o%n_vtk
     if (o%part_disks >= 0) then
@@ -309,7 +317,38 @@ contains
     end if
     call write_contacts_vtu(o%display//'/contacts_'//num//'.vtu', sc, o%vtk_single)
     call pvd_add(o%pvd, sc%time, 'contacts_'//num//'.vtu', part=o%part_contacts)
+    call clocked(o, k_vtk, t0)
   end subroutine output_vtk
+
+  !> Add the wall time since t0 to kind k.
+  subroutine clocked(o, k, t0)
+    type(output_t), intent(inout) :: o
+    integer, intent(in) :: k
+    integer(i8), intent(in) :: t0
+    integer(i8) :: t1, rate
+    call system_clock(t1, rate)
+    if (rate > 0) o%seconds(k) = o%seconds(k) + real(t1 - t0, wp) / real(rate, wp)
+    o%writes(k) = o%writes(k) + 1
+  end subroutine clocked
+
+  !> One line on what the output cost: for each kind written, the writes and
+  !> the wall time spent (e.g. for a progress report at the end of a run).
+  function output_summary(o) result(s)
+    type(output_t), intent(in) :: o
+    character(len=:), allocatable :: s
+    character(len=*), parameter :: what(4) = [character(len=15) :: 'VTK frames', 'HDF5 snapshots', &
+                                              'DOF/Vloc files', 'series rows']
+    character(len=64) :: buf
+    integer :: k
+    s = ''
+    do k = 1, 4
+      if (o%writes(k) == 0) cycle
+      write (buf, '(i0,1x,a,1x,f0.3,a,f0.3,a)') o%writes(k), trim(what(k)), o%seconds(k), ' s (', &
+        1.0e3_wp * o%seconds(k) / o%writes(k), ' ms each)'
+      if (len(s) > 0) s = s//', '
+      s = s//trim(buf)
+    end do
+  end function output_summary
 
   !> Disks as points with their radius (and body state as point data).
   subroutine write_disks_vtu(path, sc, single)
@@ -523,6 +562,8 @@ contains
     character(len=16) :: num
     integer :: k, it, m, pos
     integer :: per_type(n_inter)
+    integer(i8) :: t0
+    call system_clock(t0)
     o%n_out = o%n_out + 1
     write (num, '(i0)') o%n_out
     allocate (dofs(sc%bodies%n))
@@ -573,6 +614,7 @@ contains
       end do
     end associate
     call write_vloc_rloc_file(o%outbox//'/Vloc_Rloc.OUT.'//trim(num), sc%step, sc%time, recs)
+    call clocked(o, k_outbox, t0)
   end subroutine output_outbox
 
   !> One snapshot of bodies and contacts in OUTBOX/fracas.h5.
@@ -581,7 +623,9 @@ contains
     type(scene_t), intent(in) :: sc
     integer :: n
     real(wp), allocatable :: gap_end(:)
+    integer(i8) :: t0
     if (.not. o%h5_open) return
+    call system_clock(t0)
     n = sc%contacts%n
     associate (c => sc%contacts, t => sc%tactors)
       gap_end = c%gap(1:n) + sc%h * c%u(2, 1:n)
@@ -596,6 +640,7 @@ contains
           c%status(1:n), c%law(1:n), c%normal(:, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end)
       end if
     end associate
+    call clocked(o, k_snapshot, t0)
   end subroutine output_snapshot
 
   !> One row of the per-step series (same order as series_names).
@@ -604,7 +649,9 @@ contains
     type(scene_t), intent(in) :: sc
     type(step_report_t), intent(in) :: rep
     real(wp) :: balance
+    integer(i8) :: t0
     if (.not. o%h5_open) return
+    call system_clock(t0)
     balance = rep%kinetic + sc%cohesive_energy - sc%kinetic0 - &
               (sc%work_gravity + sc%work_forces + sc%work_supports - sc%dissipated)
     call results_append_step(o%h5, [real(sc%step, wp), sc%time, real(rep%contacts, wp), &
@@ -615,6 +662,7 @@ contains
       rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds])
     call postpro_step(o%pp, sc, rep)
     call flush_if_due(o)
+    call clocked(o, k_series, t0)
   end subroutine output_series
 
   !> Flush the POSTPRO files every flush_interval seconds (fracas.h5 keeps its own clock).
