@@ -139,6 +139,28 @@ def test_dissipated_energy_of_a_sliding_disk(tmp_path):
         assert e[-1, 1] == pytest.approx(f["series/dissipated"][-1], rel=1e-6)
 
 
+def test_dissipated_energy_of_an_impact(tmp_path):
+    """The same disk thrown down onto the ground at v0 = 1 m/s (DOF.INI): IQS stops it
+    in the first step with the impulse r = m (v0 + g h) (theta = 0.5), and the
+    energy dissipated in that step is -r (u_begin + u_end)/2 = m (v0 + g h) v0 / 2
+    (= m v0^2 / 2 + the work of gravity over the step): the closed form of the
+    scheme, to the printed precision."""
+    deck = copy_deck("driven_evolution", tmp_path)
+    dof = (deck / "DATBOX" / "DOF.INI").read_text().rstrip() + "\n" + (
+        "$bdyty\n RBDY2      1\n$nodty\n"
+        " NO3xx      1                X(1)= 0.0000000D+00  X(2)= 0.0000000D+00  X(3)= 0.0000000D+00\n"
+        "                             V(1)= 0.0000000D+00  V(2)=-0.1000000D+01  V(3)= 0.0000000D+00\n"
+        "$$$$$$\n")
+    (deck / "DATBOX" / "DOF.INI").write_text(dof)
+    write_postpro(deck, "DISSIPATED ENERGY\nSTEP 1\nEND\n")
+    out = tmp_path / "out"
+    p = run("-q", "--output", out, "--set", "time_step=1e-3", "--set", "number_of_steps=3", deck)
+    assert p.returncode == 0, p.stderr
+    e = np.loadtxt(out / "POSTPRO" / "DISSIPATED_ENERGY.DAT")
+    m, g, h, v0 = 1000.0 * np.pi * 0.1 ** 2, 9.81, 1e-3, 1.0
+    assert e[0, 2] == pytest.approx(m * (v0 + g * h) * v0 / 2, abs=1e-6)   # 1 unit of the 8th printed digit
+
+
 # ---------------------------------------------------------------- NLGS non-convergence
 
 def run_unconverged(tmp_path, mode, starve=True):
