@@ -82,7 +82,7 @@ contains
     call scene_build(deck, sc)
     nsteps = deck%run%number_of_steps
     if (check_only) then
-      write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'check: OK (', sc%bodies%n, ' bodies, ', sc%tactors%n, &
+      write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'check: OK (', sc%bodies%n + sc%meshes%n, ' bodies, ', sc%tactors%n, &
         ' contactors, ', size(sc%laws), ' contact laws, ', nsteps, ' steps)'
       return
     end if

@@ -40,7 +40,8 @@ module fracas_deck
     integer, allocatable :: nodes(:)     !< node numbers within the body
     character(len=5) :: model = ''       !< MODELS.DAT nickname
     character(len=5) :: behav = ''       !< BULK_BEHAV.DAT material nickname
-    type(source_t) :: src
+    type(source_t) :: src                !< the element line
+    type(source_t) :: model_src          !< its 'model ... behav' line
   end type element_input_t
 
   !> One $bdyty block of BODIES.DAT: a rigid body (RBDY2) or a meshed body (MAILx).
@@ -136,7 +137,8 @@ module fracas_deck
   !> the lines LMGC90 writes (small strain: stress (xx, yy, xy, zz), strain
   !> (xx, yy, 2 xy, zz); J2 adds a line of internal values).
   type :: gpv_record_t
-    integer :: body = 0, element = 0
+    integer :: body = 0, element = 0     !< MAILx body number, element rank in the body
+    character(len=5) :: kind = ''        !< element geometry as written ('T3xxx', 'Q4xxx', ...)
     real(wp), allocatable :: values(:, :)   !< (values per Gauss point, Gauss points)
     type(source_t) :: src
   end type gpv_record_t

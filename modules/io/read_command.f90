@@ -11,12 +11,13 @@ module fracas_read_command
   private
   public :: read_command, apply_command_setting, check_run_control, command_keywords
 
-  integer, parameter :: n_keys = 19
+  integer, parameter :: n_keys = 23
   character(len=21), parameter :: keys(n_keys) = [character(len=21) :: &
     'time_step', 'number_of_steps', 'final_time', 'theta', 'detection_frequency', &
     'nlgs_check', 'nlgs_tolerance', 'nlgs_relaxation', 'nlgs_sweeps_per_check', &
     'nlgs_max_checks', 'nlgs_order', 'nlgs_seed', 'output_dof_every', 'output_vtk_every', &
-    'output_hdf5_every', 'progress_every', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision']
+    'output_hdf5_every', 'progress_every', 'plane', 'newton_tolerance', 'newton_max_iterations', &
+    'linear_solver', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision']
   integer, parameter :: k_time_step = 1, k_number_of_steps = 2, k_final_time = 3
 
 contains
@@ -150,13 +151,14 @@ contains
     integer, intent(in) :: key
     character(len=:), allocatable :: s
     select case (trim(keys(key)))
-    case ('time_step', 'final_time', 'nlgs_tolerance')
+    case ('time_step', 'final_time', 'nlgs_tolerance', 'newton_tolerance')
       s = 'a real > 0'
     case ('theta')
       s = 'a real in [0.5, 1]'
     case ('nlgs_relaxation')
       s = 'a real in (0, 2)'
-    case ('number_of_steps', 'detection_frequency', 'nlgs_sweeps_per_check', 'nlgs_max_checks')
+    case ('number_of_steps', 'detection_frequency', 'nlgs_sweeps_per_check', 'nlgs_max_checks', &
+          'newton_max_iterations')
       s = 'an integer >= 1'
     case ('nlgs_seed')
       s = 'an integer'
@@ -164,6 +166,10 @@ contains
       s = 'one of Quad, Maxm, QM/16'
     case ('nlgs_order')
       s = 'one of stored, reversed, shuffled, colored'
+    case ('plane')
+      s = 'one of strain, stress'
+    case ('linear_solver')
+      s = 'one of auto, dense, cholmod'
     case ('nlgs_unconverged')
       s = 'one of warn, fail, stop'
     case ('output_vtk_disks')
@@ -233,6 +239,24 @@ contains
       run%output_hdf5_every = int_min(0)
     case ('progress_every')
       run%progress_every = int_min(0)
+    case ('plane')
+      select case (lv)
+      case ('strain', 'stress')
+        run%plane = lv
+      case default
+        call bad()
+      end select
+    case ('newton_tolerance')
+      run%newton_tolerance = real_in(0.0_wp, huge(1.0_wp), .false.)
+    case ('newton_max_iterations')
+      run%newton_max_iterations = int_min(1)
+    case ('linear_solver')
+      select case (lv)
+      case ('auto', 'dense', 'cholmod')
+        run%linear_solver = lv
+      case default
+        call bad()
+      end select
     case ('nlgs_unconverged')
       select case (lv)
       case ('warn', 'fail', 'stop')

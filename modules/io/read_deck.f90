@@ -2,11 +2,13 @@
 !> that its files agree with each other. Each error names the file, line and
 !> column of the record that refers to something missing.
 !>
-!> Files: BULK_BEHAV.DAT, BODIES.DAT and TACT_BEHAV.DAT are required;
-!> DRV_DOF.DAT, DOF.INI, Vloc_Rloc.INI and POSTPRO.DAT are optional (absent:
-!> nothing driven, everything at rest, no contact history, no POSTPRO files;
-!> a missing DOF.INI or Vloc_Rloc.INI is said in a warning). The run control
-!> comes from COMMAND.DAT (or the file given) and the --set settings; without
+!> Files: BULK_BEHAV.DAT, BODIES.DAT and TACT_BEHAV.DAT are required, and
+!> MODELS.DAT when BODIES.DAT has meshed (MAILx) bodies; DRV_DOF.DAT, DOF.INI,
+!> Vloc_Rloc.INI, GPV.INI and POSTPRO.DAT are optional (absent: nothing driven,
+!> everything at rest, no contact history, no initial Gauss-point values, no
+!> POSTPRO files; a missing DOF.INI or Vloc_Rloc.INI is said in a warning). A
+!> rigid deck reads no MODELS.DAT nor GPV.INI. The run control comes from
+!> COMMAND.DAT (or the file given) and the --set settings; without
 !> COMMAND.DAT, from the defaults and --set alone (time_step and
 !> number_of_steps or final_time must then be set).
 module fracas_read_deck
@@ -16,6 +18,8 @@ module fracas_read_deck
   use fracas_files, only: file_exists, dir_exists
   use fracas_datbox_text, only: itoa, rtoa
   use fracas_read_bodies, only: read_bodies
+  use fracas_read_models, only: read_models, check_element_models
+  use fracas_read_gpv, only: read_gpv_file
   use fracas_read_bulk_behav, only: read_bulk_behav
   use fracas_read_tact_behav, only: read_tact_behav
   use fracas_read_drv_dof, only: read_drv_dof
@@ -38,7 +42,8 @@ contains
     character(len=*), intent(in), optional :: command_file
     character(len=*), intent(in), optional :: settings(:)
     character(len=:), allocatable :: dat, cmd, path
-    integer :: k, dof_line, vloc_line
+    integer :: k, dof_line, vloc_line, gpv_line, gpv_step, first_mesh
+    real(wp) :: gpv_time
 
     deck%case_dir = strip_slash(case_dir)
     dat = deck%case_dir//'/DATBOX'
@@ -48,11 +53,38 @@ contains
 
     call read_bulk_behav(required(dat//'/BULK_BEHAV.DAT'), deck%gravity, deck%materials)
     call read_bodies(required(dat//'/BODIES.DAT'), deck%bodies, deck%materials)
+
+    ! Meshed bodies: their elements' models (MODELS.DAT) and initial Gauss-point values (GPV.INI).
+    first_mesh = 0
+    do k = size(deck%bodies), 1, -1
+      if (deck%bodies(k)%model == 'MAILx') first_mesh = k
+    end do
+    gpv_line = 0
+    if (first_mesh > 0) then
+      path = dat//'/MODELS.DAT'
+      associate (b => deck%bodies(first_mesh))
+        if (.not. file_exists(path)) &
+          call input_error(b%src%file, b%src%line, 2, 'MAILx body '//itoa(b%number)//" is meshed: its elements' " &
+                           //"models (here '"//trim(b%elements(1)%model)//"') are defined in MODELS.DAT, which " &
+                           //'is missing ('//path//')')
+      end associate
+      call read_models(path, deck%models)
+      call check_element_models(deck%bodies, deck%models, deck%materials)
+      path = dat//'/GPV.INI'
+      if (file_exists(path)) then
+        call read_gpv_file(path, gpv_step, gpv_time, deck%gpv_ini, deck%bodies, deck%models, gpv_line)
+      else
+        allocate (deck%gpv_ini(0))
+      end if
+    else
+      allocate (deck%models(0), deck%gpv_ini(0))
+    end if
+
     call read_tact_behav(required(dat//'/TACT_BEHAV.DAT'), deck%laws, deck%see_rules)
 
     path = dat//'/DRV_DOF.DAT'
     if (file_exists(path)) then
-      call read_drv_dof(path, dat, size(deck%bodies), deck%driven)
+      call read_drv_dof(path, dat, deck%driven, deck%bodies)
     else
       allocate (deck%driven(0))
     end if
@@ -60,7 +92,7 @@ contains
     dof_line = 0
     path = dat//'/DOF.INI'
     if (file_exists(path)) then
-      call read_dof_file(path, deck%dof_step, deck%dof_time, deck%dof_ini, size(deck%bodies), dof_line)
+      call read_dof_file(path, deck%dof_step, deck%dof_time, deck%dof_ini, deck%bodies, dof_line)
     else
       allocate (deck%dof_ini(0))
       call warn(path//' not found: every body starts at rest in its reference configuration')
@@ -115,13 +147,19 @@ contains
       call warn('no '//cmd//': run control from --set and the defaults (fracas-tools command writes a COMMAND.DAT)')
     end if
 
-    ! DOF.INI and Vloc_Rloc.INI describe the same restart state.
+    ! DOF.INI, Vloc_Rloc.INI and GPV.INI describe the same restart state.
     if (dof_line > 0 .and. vloc_line > 0) then
       if (deck%dof_step /= deck%vloc_step .or. &
           abs(deck%dof_time - deck%vloc_time) > 1.0e-3_wp*deck%run%time_step) &
         call input_error(dat//'/Vloc_Rloc.INI', vloc_line, 1, '$steps '//itoa(deck%vloc_step)//' time= ' &
                          //rtoa(deck%vloc_time)//' does not match DOF.INI ($steps '//itoa(deck%dof_step) &
                          //' time= '//rtoa(deck%dof_time)//')')
+    end if
+    if (dof_line > 0 .and. gpv_line > 0) then
+      if (deck%dof_step /= gpv_step .or. abs(deck%dof_time - gpv_time) > 1.0e-3_wp*deck%run%time_step) &
+        call input_error(dat//'/GPV.INI', gpv_line, 1, '$steps '//itoa(gpv_step)//' time= '//rtoa(gpv_time) &
+                         //' does not match DOF.INI ($steps '//itoa(deck%dof_step)//' time= ' &
+                         //rtoa(deck%dof_time)//')')
     end if
   end subroutine read_deck
 

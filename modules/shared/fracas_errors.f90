@@ -5,7 +5,7 @@ module fracas_errors
   use, intrinsic :: iso_fortran_env, only: error_unit
   implicit none
   private
-  public :: fatal, input_error, warn, set_cleanup, cleanup_proc, stop_run
+  public :: fatal, input_error, warn, set_cleanup, cleanup_proc, stop_run, itoa
   public :: exit_error, exit_unconverged
 
   !> Exit statuses of the programs (documented in fracas --help and doc/):
@@ -76,6 +76,7 @@ contains
     end if
   end subroutine run_cleanup
 
+  !> Decimal text of an integer (for messages).
   pure function itoa(i) result(s)
     integer, intent(in) :: i
     character(len=:), allocatable :: s
