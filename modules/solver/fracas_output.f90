@@ -19,7 +19,7 @@ module fracas_output
                         vtu_cell_data, vtu_end, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_polygon, &
                         vtu_cells_fixed, vtk_line
   use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc, tk_disk, &
-                               tk_xksid
+                               tk_xksid, tk_alpxx
   use fracas_scene, only: scene_t, step_report_t
   use fracas_version, only: version_string
   use fracas_contact_laws, only: law_czm
@@ -191,29 +191,40 @@ contains
     call h5_close_group(g)
   end subroutine write_run_group
 
-  !> /contactors: the geometry of every contactor in its body's frame.
+  !> /contactors: the geometry of every contactor: of a rigid body in its
+  !> body's frame, of a meshed body by its mesh nodes.
   subroutine write_contactors_group(o, sc)
     type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
     integer(hid_t) :: g
-    integer(ik), allocatable :: first(:), nvert(:)
+    integer(ik), allocatable :: first(:), nvert(:), nfirst(:), nnodes(:), body(:)
     integer :: k
     associate (t => sc%tactors)
-      allocate (first(t%n), nvert(t%n))
+      allocate (first(t%n), nvert(t%n), nfirst(t%n), nnodes(t%n), body(t%n))
       do k = 1, t%n
         first(k) = 0
         nvert(k) = 0
+        nfirst(k) = 0
+        nnodes(k) = 0
         if (t%kind(k) == tk_polyg) then
           first(k) = int(t%vfirst(k) - 1, ik)
           nvert(k) = int(t%vfirst(k + 1) - t%vfirst(k), ik)
         end if
+        if (t%model(k) == bm_rigid) then
+          body(k) = int(sc%bodies%number(t%body(k)), ik)
+        else
+          body(k) = int(t%body(k), ik)      ! MAILx bodies are numbered in deck order
+          nfirst(k) = int(t%nfirst(k) - 1, ik)
+          nnodes(k) = int(t%nfirst(k + 1) - t%nfirst(k), ik)
+        end if
       end do
       call results_group(o%h5, 'contactors', g)
       call h5_write_attr(g, 'count', int(t%n, ik))
-      call h5_write_dataset(g, 'body', int(sc%bodies%number(t%body(1:t%n)), ik))
+      call h5_write_dataset(g, 'model', int(t%model(1:t%n), ik))
+      call h5_write_dataset(g, 'body', body)
       call h5_write_dataset(g, 'rank', int(t%rank(1:t%n), ik))
       call h5_write_dataset(g, 'kind', int(t%kind(1:t%n), ik))
-      call h5_write_dataset(g, 'kind_names', [(tactor_kind_name(k), k=1, 4)])
+      call h5_write_dataset(g, 'kind_names', [(tactor_kind_name(k), k=tk_disk, tk_alpxx)])
       call h5_write_dataset(g, 'color', t%color(1:t%n))
       call h5_write_dataset(g, 'radius', t%radius(1:t%n))
       call h5_write_dataset(g, 'half_length', t%ax1(1:t%n))
@@ -225,6 +236,15 @@ contains
         call h5_write_dataset(g, 'vertices', t%vert)
       else
         call h5_write_dataset(g, 'vertices', reshape([real(wp) ::], [2, 0]))
+      end if
+      call h5_write_dataset(g, 'node_first', nfirst)
+      call h5_write_dataset(g, 'node_count', nnodes)
+      if (allocated(t%nodes)) then
+        call h5_write_dataset(g, 'nodes', int(t%nodes, ik))
+        call h5_write_dataset(g, 'apab', t%apab(1:t%n))
+      else
+        call h5_write_dataset(g, 'nodes', [integer(ik) ::])
+        call h5_write_dataset(g, 'apab', [real(wp) ::])
       end if
       call h5_close_group(g)
     end associate
@@ -589,7 +609,8 @@ contains
 
     logical function is_shape(k)
       integer, intent(in) :: k
-      is_shape = sc%tactors%kind(k) /= tk_disk .or. .not. disk_points
+      ! Contactors of meshed bodies are drawn with their mesh (meshes piece).
+      is_shape = sc%tactors%model(k) == bm_rigid .and. (sc%tactors%kind(k) /= tk_disk .or. .not. disk_points)
     end function is_shape
   end subroutine write_shapes_vtu
 

@@ -9,7 +9,7 @@ import h5py
 import numpy as np
 import pytest
 
-from fracas_run import lmgc90_decks, run
+from fracas_run import ROOT, lmgc90_decks, run
 
 vtkio = pytest.importorskip("vtkmodules.vtkIOXML")
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
@@ -171,3 +171,27 @@ def test_contactors_in_fracas_h5_match_bodies_dat(mixed):
         np.testing.assert_array_equal(f["contactors/vertex_count"][:][kind == POLYG], nvert)
         assert f["contactors/vertices"].shape == (sum(nvert), 2)
         assert f["run"].attrs["output_vtk_every"] == 5
+
+
+def test_meshed_deck_pieces_and_contactors(tmp_path):
+    """A meshed block dropped on a rigid ground (mesh_block_drop): the shapes piece
+    holds the rigid ground only (the CLxxx points of the mesh are drawn with the
+    mesh), the meshes piece the 32 Q4 elements; /contactors gives every contactor's
+    model, its body, and for the mesh ones their nodes."""
+    out = tmp_path / "mesh"
+    p = run("-q", "--output", out, "--command", ROOT / "test_cases" / "compat" / "mesh_block_drop" / "run.dat",
+            "--set", "number_of_steps=4", "--set", "output_vtk_every=4", "--set", "output_hdf5_every=4",
+            lmgc90_decks() / "mesh_block_drop")
+    assert p.returncode == 0, p.stderr
+    last = frames(out)[max(frames(out))]
+    shapes = read(last["shapes"])
+    assert shapes.GetNumberOfCells() == 1 and shapes.GetCellType(0) == VTK_POLYGON
+    assert read(last["meshes"]).GetNumberOfCells() == 32
+    with h5py.File(out / "OUTBOX" / "fracas.h5") as f:
+        g = f["contactors"]
+        model, kind = g["model"][:], g["kind"][:]
+        assert list(g["kind_names"].asstr()[:]) == ["DISKx", "xKSID", "JONCx", "POLYG", "CLxxx", "ALpxx"]
+        assert np.all(model[kind == JONC] == 1) and np.all(model[kind == 5] == 2)
+        cl = np.nonzero(kind == 5)[0]
+        assert np.all(g["node_count"][:][cl] == 2)          # a CLxxx point on an edge (noda, nodb)
+        assert g["nodes"].shape == (int(g["node_count"][:].sum()),)
