@@ -13,8 +13,8 @@
 !>   R(V) = h Fext_θ - M (V - Vb) - h ((1-θ) Fi_b + θ Fi(X(V)))
 !> and A = M + h²θ² K_t (K_t the tangent stiffness at X(V)), an iteration is
 !> V <- V_free + A_ff⁻¹ r, V_free = V + A_ff⁻¹ R(V), on the free dofs; a
-!> velocity-driven dof holds its imposed end-of-step value throughout, and
-!> starts the step from its previous velocity (as LMGC90).
+!> velocity-driven dof holds its imposed end-of-step value throughout and
+!> starts the step at its imposed value (run control driven_start).
 module fracas_mailx
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, input_error
@@ -77,6 +77,7 @@ module fracas_mailx
     ! of the step and at the current iterate, Newton residual, contact impulses
     ! of the last solve, force applied by the velocity drives (end of step).
     real(wp), allocatable :: fext(:, :), fint_begin(:, :), fint(:, :), res(:, :), imp(:, :), fsupport(:, :)
+    real(wp), allocatable :: tmp(:, :)         !< (2,nnodes) scratch of the body-by-body products
     ! Linear algebra per body: small bodies dense (K, consistent M, A_ff⁻¹ with
     ! zero rows and columns on driven dofs, ndof² each from dfirst(b)), large
     ! ones sparse.
@@ -94,6 +95,7 @@ module fracas_mailx
     real(wp) :: kinetic0 = 0.0_wp, elastic = 0.0_wp, plastic_work = 0.0_wp
     real(wp) :: work_gravity = 0.0_wp, work_forces = 0.0_wp, work_supports = 0.0_wp
     integer :: iterations = 0                  !< Newton iterations of the last step
+    logical :: driven_start_imposed = .true.   !< a driven dof starts a step at its imposed value
   end type mailx_t
 
 contains
@@ -112,6 +114,7 @@ contains
     m%gravity = deck%gravity(1:2)
     m%plane = merge(plane_stress, plane_strain, deck%run%plane == 'stress')
     m%method = trim(deck%run%linear_solver)
+    m%driven_start_imposed = deck%run%driven_start == 'imposed'
     m%n = count(deck%bodies%model == 'MAILx')
     allocate (m%node_first(m%n + 1), m%elem_first(m%n + 1))
     nn = 0; ne = 0; nel_nodes = 0; ng = 0; b = 0
@@ -137,7 +140,7 @@ contains
               m%vfree(2, nn), m%driven(2, nn), m%movable(m%n), m%el_kind(ne), m%el_mat(ne), m%el_first(ne + 1), &
               m%el_nodes(nel_nodes), m%el_gp(ne + 1), m%gp(gp_size, ng), m%gp_begin(gp_size, ng), &
               m%nonlinear(m%n), m%lumped(m%n), m%mdiag(2, nn), m%fext(2, nn), m%fint_begin(2, nn), &
-              m%fint(2, nn), m%res(2, nn), m%imp(2, nn), m%fsupport(2, nn))
+              m%fint(2, nn), m%res(2, nn), m%imp(2, nn), m%fsupport(2, nn), m%tmp(2, nn))
     m%x = 0.0_wp; m%v = 0.0_wp; m%vfree = 0.0_wp
     m%driven = .false.
     m%gp = 0.0_wp
@@ -416,45 +419,41 @@ contains
         call assemble_body(m, b, u, with_mass=.false.)
         call factorize_body(m, b)
       else
-        call body_k_times(m, b, u(:, i1:i2), m%fint(:, i1:i2))
+        call body_k_times(m, b, 2 * (i2 - i1 + 1), u(:, i1:i2), m%fint(:, i1:i2))
       end if
     end do
   end subroutine internal_forces
 
-  !> y = K u on body b (u, y: (2, nodes of b)).
-  subroutine body_k_times(m, b, u, y)
+  !> y = K u on body b (u, y: its nodes' (x, y) pairs, nd = 2 x nodes; the
+  !> callers pass columns of the node arrays, contiguous: no copies).
+  subroutine body_k_times(m, b, nd, u, y)
     type(mailx_t), intent(in) :: m
-    integer, intent(in) :: b
-    real(wp), intent(in) :: u(:, :)
-    real(wp), intent(out) :: y(:, :)
-    integer :: nd
-    real(wp) :: yv(body_ndof(m, b))
-    nd = body_ndof(m, b)
+    integer, intent(in) :: b, nd
+    real(wp), intent(in) :: u(nd)
+    real(wp), intent(out) :: y(nd)
     if (m%dense(b)) then
-      call dense_times(m%dk(m%dfirst(b) + 1:m%dfirst(b) + nd * nd), nd, reshape(u, [nd]), yv)
+      call dense_times(m%dk(m%dfirst(b) + 1), nd, u, y)
     else
-      call sparse_matvec(m%big(b)%k, reshape(u, [nd]), yv)
+      call sparse_matvec(m%big(b)%k, u, y)
     end if
-    y = reshape(yv, [2, nd / 2])
   end subroutine body_k_times
 
-  !> y = M v on body b.
-  subroutine body_m_times(m, b, v, y)
+  !> y = M v on body b (as body_k_times).
+  subroutine body_m_times(m, b, nd, v, y)
     type(mailx_t), intent(in) :: m
-    integer, intent(in) :: b
-    real(wp), intent(in) :: v(:, :)
-    real(wp), intent(out) :: y(:, :)
-    integer :: nd
-    real(wp) :: yv(body_ndof(m, b))
-    nd = body_ndof(m, b)
+    integer, intent(in) :: b, nd
+    real(wp), intent(in) :: v(nd)
+    real(wp), intent(out) :: y(nd)
+    integer :: i, n0
     if (m%lumped(b)) then
-      y = m%mdiag(:, m%node_first(b):m%node_first(b + 1) - 1) * v
+      n0 = m%node_first(b) - 1
+      do i = 1, nd
+        y(i) = m%mdiag(2 - mod(i, 2), n0 + (i + 1) / 2) * v(i)
+      end do
     else if (m%dense(b)) then
-      call dense_times(m%dm(m%dfirst(b) + 1:m%dfirst(b) + nd * nd), nd, reshape(v, [nd]), yv)
-      y = reshape(yv, [2, nd / 2])
+      call dense_times(m%dm(m%dfirst(b) + 1), nd, v, y)
     else
-      call sparse_matvec(m%big(b)%mass, reshape(v, [nd]), yv)
-      y = reshape(yv, [2, nd / 2])
+      call sparse_matvec(m%big(b)%mass, v, y)
     end if
   end subroutine body_m_times
 
@@ -542,30 +541,28 @@ contains
     end associate
   end subroutine factorize_body
 
-  !> x := A_ff⁻¹ x on body b (x: (2, nodes of b); driven dofs of x are ignored
-  !> on input and zero on output).
-  subroutine body_solve(m, b, x)
+  !> x := A_ff⁻¹ x on body b (x as in body_k_times; driven dofs of x are
+  !> ignored on input and zero on output).
+  subroutine body_solve(m, b, nd, x)
     type(mailx_t), intent(inout) :: m
-    integer, intent(in) :: b
-    real(wp), intent(inout) :: x(:, :)
-    integer :: nd, i
-    real(wp) :: xv(body_ndof(m, b)), yv(body_ndof(m, b))
+    integer, intent(in) :: b, nd
+    real(wp), intent(inout) :: x(nd)
+    integer :: i
+    real(wp) :: y(nd)
     real(wp), allocatable :: xf(:)
-    nd = body_ndof(m, b)
-    xv = reshape(x, [nd])
     if (m%dense(b)) then
-      call dense_times(m%dinv(m%dfirst(b) + 1:m%dfirst(b) + nd * nd), nd, xv, yv)
+      call dense_times(m%dinv(m%dfirst(b) + 1), nd, x, y)
+      x = y
     else
       associate (bb => m%big(b))
-        xf = pack(xv, bb%free_of > 0)
+        xf = pack(x, bb%free_of > 0)
         call factor_solve(m%big(b)%f, xf)
-        yv = 0.0_wp
         do i = 1, nd
-          if (bb%free_of(i) > 0) yv(i) = xf(bb%free_of(i))
+          x(i) = 0.0_wp
+          if (bb%free_of(i) > 0) x(i) = xf(bb%free_of(i))
         end do
       end associate
     end if
-    x = reshape(yv, [2, nd / 2])
   end subroutine body_solve
 
   !> Start of a step [t, t+h]: external forces (gravity, θ-averaged driven
@@ -574,13 +571,19 @@ contains
   subroutine mailx_begin_step(m, t)
     type(mailx_t), intent(inout) :: m
     real(wp), intent(in) :: t
-    integer :: k, b
-    real(wp), allocatable :: g(:, :)
+    integer :: k, b, i1, i2
     m%time = t
     m%iterations = 0
+    m%tmp(1, :) = m%gravity(1)
+    m%tmp(2, :) = m%gravity(2)
     do b = 1, m%n
-      g = spread(m%gravity, 2, m%node_first(b + 1) - m%node_first(b))
-      call body_m_times(m, b, g, m%fext(:, m%node_first(b):m%node_first(b + 1) - 1))
+      i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
+      call body_m_times(m, b, 2 * (i2 - i1 + 1), m%tmp(:, i1:i2), m%fext(:, i1:i2))
+    end do
+    do k = 1, size(m%drives)
+      associate (d => m%drives(k))
+        if (d%is_velocity .and. m%driven_start_imposed) m%vbegin(d%dof, d%body) = drive_value(d, t)
+      end associate
     end do
     m%v = m%vbegin
     do k = 1, size(m%drives)
@@ -602,16 +605,14 @@ contains
   subroutine mailx_iterate(m)
     type(mailx_t), intent(inout) :: m
     integer :: b, i1, i2
-    real(wp), allocatable :: dv(:, :)
     m%iterations = m%iterations + 1
     call residual(m)
-    m%vfree = m%v
+    m%vfree = m%res
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
-      dv = m%res(:, i1:i2)
-      call body_solve(m, b, dv)
-      m%vfree(:, i1:i2) = m%v(:, i1:i2) + dv
+      call body_solve(m, b, 2 * (i2 - i1 + 1), m%vfree(:, i1:i2))
     end do
+    m%vfree = m%v + m%vfree
   end subroutine mailx_iterate
 
   !> m%res = R(V) = h Fext - M (V - Vb) - h ((1-θ) Fi_b + θ Fi(X(V))).
@@ -620,9 +621,10 @@ contains
     integer :: b, i1, i2
     m%x = m%xbegin + m%h * ((1.0_wp - m%theta) * m%vbegin + m%theta * m%v)
     call internal_forces(m, m%x)
+    m%tmp = m%v - m%vbegin
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
-      call body_m_times(m, b, m%v(:, i1:i2) - m%vbegin(:, i1:i2), m%res(:, i1:i2))
+      call body_m_times(m, b, 2 * (i2 - i1 + 1), m%tmp(:, i1:i2), m%res(:, i1:i2))
     end do
     m%res = m%h * m%fext - m%res - m%h * ((1.0_wp - m%theta) * m%fint_begin + m%theta * m%fint)
   end subroutine residual
@@ -633,16 +635,14 @@ contains
     type(mailx_t), intent(inout) :: m
     real(wp), intent(in) :: imp(:, :)
     integer :: b, i1, i2
-    real(wp), allocatable :: dv(:, :)
     m%imp = imp
-    m%v = m%vfree
+    m%tmp = imp
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
       if (all(imp(:, i1:i2) == 0.0_wp)) cycle
-      dv = imp(:, i1:i2)
-      call body_solve(m, b, dv)
-      m%v(:, i1:i2) = m%v(:, i1:i2) + dv
+      call body_solve(m, b, 2 * (i2 - i1 + 1), m%tmp(:, i1:i2))
     end do
+    m%v = m%vfree + m%tmp
   end subroutine mailx_velocity_from_impulses
 
   !> After a contact solve: is the step's Newton loop converged? Linear scenes
@@ -701,15 +701,18 @@ contains
   contains
     subroutine residual_at_end()
       integer :: b, i1, i2
-      real(wp), allocatable :: r(:, :)
-      allocate (r(2, m%nnodes))
+      m%tmp = m%v - m%vbegin
       do b = 1, m%n
         i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
-        call body_m_times(m, b, m%v(:, i1:i2) - m%vbegin(:, i1:i2), r(:, i1:i2))
+        call body_m_times(m, b, 2 * (i2 - i1 + 1), m%tmp(:, i1:i2), m%fsupport(:, i1:i2))
       end do
-      r = m%h * m%fext - r - m%h * ((1.0_wp - m%theta) * m%fint_begin + m%theta * m%fint)
-      m%fsupport = 0.0_wp
-      where (m%driven) m%fsupport = -(r + m%imp) / m%h
+      ! the drives' force closes the equation of motion of their dofs
+      where (m%driven)
+        m%fsupport = -(m%h * m%fext - m%fsupport - m%h * ((1.0_wp - m%theta) * m%fint_begin + m%theta * m%fint) &
+                       + m%imp) / m%h
+      elsewhere
+        m%fsupport = 0.0_wp
+      end where
     end subroutine residual_at_end
   end subroutine mailx_end_step
 
@@ -719,14 +722,12 @@ contains
     type(mailx_t), intent(in) :: m
     integer :: b, i1, i2
     real(wp), allocatable :: mv(:, :)
-    e = 0.0_wp
+    allocate (mv(2, m%nnodes))
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
-      allocate (mv(2, i2 - i1 + 1))
-      call body_m_times(m, b, m%v(:, i1:i2), mv)
-      e = e + 0.5_wp * sum(mv * m%v(:, i1:i2))
-      deallocate (mv)
+      call body_m_times(m, b, 2 * (i2 - i1 + 1), m%v(:, i1:i2), mv(:, i1:i2))
     end do
+    e = 0.5_wp * sum(mv * m%v)
   end function mailx_kinetic_energy
 
   !> Stored elastic energy: 1/2 X^T K X for linear bodies, the Gauss-point
@@ -736,16 +737,15 @@ contains
     type(mailx_t), intent(in) :: m
     integer :: b, i1, i2
     real(wp), allocatable :: kx(:, :)
+    allocate (kx(2, m%nnodes))
     e = 0.0_wp
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
       if (m%nonlinear(b)) then
         e = e + m%eel(b)
       else
-        allocate (kx(2, i2 - i1 + 1))
-        call body_k_times(m, b, m%x(:, i1:i2), kx)
-        e = e + 0.5_wp * sum(kx * m%x(:, i1:i2))
-        deallocate (kx)
+        call body_k_times(m, b, 2 * (i2 - i1 + 1), m%x(:, i1:i2), kx(:, i1:i2))
+        e = e + 0.5_wp * sum(kx(:, i1:i2) * m%x(:, i1:i2))
       end if
     end do
   end function elastic_energy
@@ -864,7 +864,7 @@ contains
           col = 2 * (i - 1) + d
           e = 0.0_wp
           e(d, set(i) - m%node_first(b) + 1) = 1.0_wp
-          call body_solve(m, b, e)
+          call body_solve(m, b, 2 * nb, e)
           m%big(b)%c(1:2 * ns:2, col) = e(1, set - m%node_first(b) + 1)
           m%big(b)%c(2:2 * ns:2, col) = e(2, set - m%node_first(b) + 1)
         end do

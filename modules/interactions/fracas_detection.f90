@@ -310,7 +310,8 @@ contains
         if ((c(1, a) - c(1, b))**2 + (c(2, a) - c(2, b))**2 > reach**2) return
       end if
       if (t%body(a) == t%body(b) .and. t%model(a) == t%model(b)) return
-      if (.not. (body_movable(a) .or. body_movable(b))) return
+      ! Bodies whose every dof is driven still interact (a cohesive interface
+      ! tested by driving both sides): LMGC90 keeps their contacts too.
       ! Orientation: the interaction type decides which side is the candidate;
       ! for two disks the lower index is the candidate unless only the reverse rule exists.
       icd = a; ian = b
@@ -343,14 +344,6 @@ contains
       call push_pair(icd, ian, inter, law, alert)
     end subroutine consider
 
-    logical function body_movable(k)
-      integer, intent(in) :: k
-      if (t%model(k) == bm_mesh) then
-        body_movable = mesh_movable(t%body(k))
-      else
-        body_movable = movable(t%body(k))
-      end if
-    end function body_movable
 
     subroutine push_pair(icd, ian, inter, law, alert)
       integer, intent(in) :: icd, ian, inter, law

@@ -191,9 +191,11 @@ contains
   !>     cohesive contact (0: none; see gs_sweep_2d for coh), any_coh: some is;
   !>   bv(6, *) one record per body: v (3) and the inverse mass (3);
   !>   r(2, n), status(n) in sweep order.
-  !> Statuses are written, and the norm sums accumulated, only in check sweeps
-  !> (the last sweep of a solve is always one). Sweeps without check and without
-  !> cohesive contacts run a lean loop (sweep_plain, the local solver inlined).
+  !> A check pass (check) is LMGC90's convergence check: every contact's local
+  !> solution is computed from the current state and compared with its current
+  !> reaction (statuses written, norm sums accumulated) but nothing is applied.
+  !> Sweeps without check and without cohesive contacts run a lean loop
+  !> (sweep_plain, the local solver inlined).
   subroutine gs_sweep_2d_packed(n, cb, cr, icoh, any_coh, coh, r, status, bv, relax, check, sums, maxes)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
@@ -270,8 +272,8 @@ contains
     end do
   end subroutine sweep_plain
 
-  !> Any sweep: cohesive contacts, and with check the statuses and LMGC90's norm
-  !> sums (see gs_sweep_2d). gs_sweep_2d's loop without its indirections.
+  !> Any sweep with cohesive contacts, or a check pass (statuses and LMGC90's
+  !> norm sums, nothing applied). gs_sweep_2d's loop without its indirections.
   subroutine sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
@@ -295,6 +297,7 @@ contains
       un = dvx * n1 + dvy * n2 + bv(3, a) * cr(4, k) - bv(3, o) * cr(6, k)
       rt0 = r(1, k); rn0 = r(2, k)
       call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
+      if (check) cycle        ! a check pass evaluates, it does not apply
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
@@ -379,7 +382,7 @@ contains
   !>     m x 2 block G = C H^T stored by rows (2, m) (m = gm(s, k) contact dofs
   !>     of its body, starting in mv at mfirst(s, k)), so an impulse change dr
   !>     moves mv by G dr.
-  !> Statuses and norm sums as gs_sweep_2d_packed (check).
+  !> Statuses and norm sums as gs_sweep_2d_packed: a check pass applies nothing.
   subroutine gs_sweep_mesh(n, cr, side, gm, mfirst, slot, wt, icoh, coh, r, status, bv, mv, gmat, relax, check, &
                            sums, maxes)
     integer, intent(in) :: n
@@ -429,6 +432,7 @@ contains
       end if
       rt0 = r(1, k); rn0 = r(2, k)
       call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
+      if (check) cycle        ! a check pass evaluates, it does not apply
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle

@@ -3,9 +3,11 @@
 !> each contact sees its neighbours' latest reactions. Contacts between two
 !> rigid bodies run in the packed rigid kernel; contacts with a meshed side in
 !> the mesh kernel, on the velocities of the meshed bodies' contact dofs
-!> (doc/architecture.md); both in one sweep. Convergence is measured
-!> with LMGC90's normalised norms (Quad, Maxm, QM/16), computed inside the last
-!> sweep of each block, and after convergence with the FCLib natural map.
+!> (doc/architecture.md); both in one sweep. Convergence is measured as LMGC90
+!> does: after each block of sweeps, a check pass evaluates every contact's
+!> update without applying it, and LMGC90's normalised norms (Quad, Maxm,
+!> QM/16) of those updates decide; after convergence the FCLib natural map is
+!> computed too.
 module fracas_nlgs
   use fracas_kinds, only: wp, i8
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw, st_cnctc, st_cstck, st_cslfw, st_cslbw, &
@@ -403,9 +405,12 @@ contains
           call pack_contacts()
         end if
         do isweep = 1, solver%s%sweeps_per_check
-          call sweep(isweep == solver%s%sweeps_per_check)
+          call sweep(.false.)
           report%sweeps = report%sweeps + 1
         end do
+        ! LMGC90's check: one more pass that evaluates every contact's update
+        ! from the state the sweeps reached, without applying it.
+        call sweep(.true.)
         call norms(report)
         if (report%converged) exit blocks
       end do blocks
@@ -639,10 +644,16 @@ contains
       if (.not. allocated(solver%mv)) allocate (solver%mv(max(total, 16)))
       do bm = 1, m%n
         if (solver%moff(bm) < 0) cycle
-        set = mailx_contact_set(m, bm)
-        do j = 1, size(set)
-          solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, set(j))
-        end do
+        if (m%dense(bm)) then      ! the contact set is all the body's nodes, in order
+          j = m%node_first(bm + 1) - m%node_first(bm)
+          solver%mv(solver%moff(bm) + 1:solver%moff(bm) + 2 * j) = &
+            reshape(m%vfree(:, m%node_first(bm):m%node_first(bm + 1) - 1), [2 * j])
+        else
+          set = mailx_contact_set(m, bm)
+          do j = 1, size(set)
+            solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, set(j))
+          end do
+        end if
       end do
       k = n
       if (allocated(solver%gidx)) then

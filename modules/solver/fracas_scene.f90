@@ -34,8 +34,12 @@ module fracas_scene
     real(wp) :: mean_overlap = 0.0_wp, max_overlap = 0.0_wp
     integer :: late_contacts = 0         !< new contacts already overlapping when first detected
     real(wp) :: late_overlap = 0.0_wp    !< their largest overlap
-    real(wp) :: solve_seconds = 0.0_wp   !< wall time of the contact solve
-    real(wp) :: step_seconds = 0.0_wp    !< wall time of the whole step
+    ! Wall time of the step and of its parts (doc/benchmarks.md):
+    real(wp) :: bodies_seconds = 0.0_wp  !< free velocities (meshes: residual, factorizations, Newton)
+    real(wp) :: detect_seconds = 0.0_wp  !< contact detection and history
+    real(wp) :: prepare_seconds = 0.0_wp !< Delassus blocks (meshes: compliance, G blocks) and laws
+    real(wp) :: solve_seconds = 0.0_wp   !< NLGS sweeps
+    real(wp) :: step_seconds = 0.0_wp    !< the whole step
     integer :: newton_iterations = 0     !< meshed bodies: Newton iterations of the step
   end type step_report_t
 
@@ -117,6 +121,7 @@ contains
       end associate
     end do
     call rbdy2_init(sc%bodies, number, ref, mass, inertia, avrd, deck%gravity(1:2))
+    sc%bodies%driven_start_imposed = deck%run%driven_start == 'imposed'
     do k = 1, size(deck%driven)
       if (deck%driven(k)%model /= 'MAILx') call rbdy2_add_drive(sc%bodies, deck%driven(k))
     end do
@@ -257,6 +262,7 @@ contains
     real(wp) :: margin, vmax, gap_end, dx(3), stored, coh_work, released, dissipated_all
     type(nlgs_report_t) :: newton_rep
     call system_clock(t0, rate)
+    t1 = t0
     associate (b => sc%bodies, c => sc%contacts, m => sc%meshes)
       call rbdy2_begin_step(b, sc%time, sc%h, sc%theta)
       call rbdy2_detection_coor(b, sc%h, sc%theta, sc%q)
@@ -264,6 +270,7 @@ contains
         call mailx_begin_step(m, sc%time)
         call mailx_detection_coor(m, sc%xn)
       end if
+      call lap(rep%bodies_seconds)
       if (mod(sc%steps_done, sc%detection_frequency) == 0) then
         ! Between rough detections bodies move at most about vmax h per step.
         margin = 0.0_wp
@@ -316,20 +323,25 @@ contains
                                                     merge(1.0_wp, 0.0_wp, sc%step == 0), -99.0_wp]
         end if
       end do
-      call system_clock(t1)
+      call lap(rep%detect_seconds)
       call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h)
+      call lap(rep%prepare_seconds)
       call nlgs_solve(sc%solver, c, b, m, rep%nlgs)
+      call lap(rep%solve_seconds)
       ! Nonlinear meshed bodies: Newton iterations, the contact problem solved
       ! in each (warm-started from the last), as LMGC90.
-      do while (.not. mailx_converged(m, sc%newton_tolerance, sc%newton_max_iterations))
+      do
+        if (mailx_converged(m, sc%newton_tolerance, sc%newton_max_iterations)) exit
+        call lap(rep%bodies_seconds)
         b%v = b%vfree
         call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h)
+        call lap(rep%prepare_seconds)
         call nlgs_solve(sc%solver, c, b, m, newton_rep)
+        call lap(rep%solve_seconds)
         rep%nlgs%sweeps = rep%nlgs%sweeps + newton_rep%sweeps
       end do
+      call lap(rep%bodies_seconds)
       rep%newton_iterations = m%iterations
-      call system_clock(t2)
-      rep%solve_seconds = real(t2 - t1, wp) / real(rate, wp)
       call nlgs_update_cohesive(c, sc%laws, sc%h, sc%time + sc%h, stored, coh_work, released)
       call cracks_update(sc%cracks, c, sc%laws, sc%steps_done == 0, sc%step + 1)
 
@@ -381,6 +393,16 @@ contains
     end associate
     call system_clock(t2)
     rep%step_seconds = real(t2 - t0, wp) / real(rate, wp)
+
+  contains
+
+    !> Add the wall time since the last lap to acc.
+    subroutine lap(acc)
+      real(wp), intent(inout) :: acc
+      call system_clock(t2)
+      acc = acc + real(t2 - t1, wp) / real(rate, wp)
+      t1 = t2
+    end subroutine lap
   end subroutine scene_step
 
   !> Work done on the free bodies by velocity-driven dofs through the contacts
