@@ -171,6 +171,11 @@ contains
       call h5_write_attr(g, 'output_vtk_precision', trim(r%output_vtk_precision))
       call h5_write_attr(g, 'output_hdf5_every', r%output_hdf5_every)
       call h5_write_attr(g, 'progress_every', r%progress_every)
+      call h5_write_attr(g, 'driven_start', trim(r%driven_start))
+      call h5_write_attr(g, 'plane', trim(r%plane))
+      call h5_write_attr(g, 'newton_tolerance', r%newton_tolerance)
+      call h5_write_attr(g, 'newton_max_iterations', r%newton_max_iterations)
+      call h5_write_attr(g, 'linear_solver', trim(r%linear_solver))
     end associate
     text = ''
     if (allocated(deck%command_file)) text = deck%command_file
