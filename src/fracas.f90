@@ -9,7 +9,7 @@ program fracas
   use fracas_mailx, only: mailx_solver_summary
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
   use fracas_output, only: output_t, output_open, output_vtk, output_outbox, output_snapshot, &
-                           output_series, output_close
+                           output_series, output_close, output_summary
   use fracas_version, only: version_string
   use fracas_command_line, only: argument_value
   implicit none
@@ -121,6 +121,7 @@ contains
       elapsed = real(t1 - t0, wp) / real(rate, wp)
       write (output_unit, '(a,i0,a,f0.3,a,i0,a,es9.2)') 'fracas: done: ', nsteps, ' steps in ', elapsed, &
         ' s, ', total_sweeps, ' NLGS sweeps, worst natural-map residual ', worst_residual
+      write (output_unit, '(a)') 'fracas: output: '//output_summary(out)
       write (output_unit, '(a)') 'fracas: results: '//out_dir//'/OUTBOX/fracas.h5'
       if (deck%run%output_vtk_every > 0) write (output_unit, '(a)') 'fracas: ParaView: '//out_dir//'/DISPLAY/fracas.pvd'
     end if
@@ -156,8 +157,8 @@ contains
       write (msg, '(a,i0,a,es11.4,a,i0,a)') 'step ', sc%step, ' (t=', sc%time, '): the Newton loop of the meshed '// &
         'bodies did not converge in ', rep%newton_iterations, ' iterations (newton_max_iterations)'
     else
-      write (msg, '(a,i0,a,es11.4,a,i0,a,es9.2,a)') 'step ', sc%step, ' (t=', sc%time, '): NLGS did not converge in ', &
-        rep%nlgs%sweeps, ' sweeps (', check_norm(), ' / tolerance at the last check; converged below 1)'
+      write (msg, '(a,i0,a,es11.4,a,i0,a,es8.2,a)') 'step ', sc%step, ' (t=', sc%time, '): NLGS did not converge in ', &
+        rep%nlgs%sweeps, ' sweeps (norm/tolerance ', check_norm(), ' at the last check, below 1 needed)'
     end if
     if (deck%run%nlgs_unconverged == 'stop') then
       call output_close(out, complete=.false., end_reason=trim(msg)//'; stopped: nlgs_unconverged = stop')
