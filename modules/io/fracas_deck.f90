@@ -197,6 +197,10 @@ module fracas_deck
     !> Also make contacts of pairs whose predicted gap (gap + h min(0, u_n), free
     !> velocities) is within the alert distance, not only their gap (doc/solver.md).
     logical :: detection_approach = .true.
+    !> NLGS convergence measured as LMGC90 measures it, by a check pass after each
+    !> block of sweeps that evaluates without applying (yes), or by the changes of
+    !> the block's last sweep (no) (doc/solver.md).
+    logical :: nlgs_check_pass = .true.
   end type run_control_t
 
   !> One command of POSTPRO.DAT (LMGC90's post-processing deck): its name as

@@ -11,14 +11,14 @@ module fracas_read_command
   private
   public :: read_command, apply_command_setting, check_run_control, command_keywords
 
-  integer, parameter :: n_keys = 25
+  integer, parameter :: n_keys = 26
   character(len=21), parameter :: keys(n_keys) = [character(len=21) :: &
     'time_step', 'number_of_steps', 'final_time', 'theta', 'detection_frequency', &
     'nlgs_check', 'nlgs_tolerance', 'nlgs_relaxation', 'nlgs_sweeps_per_check', &
     'nlgs_max_checks', 'nlgs_order', 'nlgs_seed', 'output_dof_every', 'output_vtk_every', &
     'output_hdf5_every', 'progress_every', 'plane', 'newton_tolerance', 'newton_max_iterations', &
     'linear_solver', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision', 'driven_start', &
-    'detection_approach']
+    'detection_approach', 'nlgs_check_pass']
   integer, parameter :: k_time_step = 1, k_number_of_steps = 2, k_final_time = 3
 
 contains
@@ -173,7 +173,7 @@ contains
       s = 'one of auto, dense, cholmod'
     case ('driven_start')
       s = 'one of imposed, initial'
-    case ('detection_approach')
+    case ('detection_approach', 'nlgs_check_pass')
       s = 'one of yes, no'
     case ('nlgs_unconverged')
       s = 'one of warn, fail, stop'
@@ -273,6 +273,13 @@ contains
       select case (lv)
       case ('yes', 'no')
         run%detection_approach = lv == 'yes'
+      case default
+        call bad()
+      end select
+    case ('nlgs_check_pass')
+      select case (lv)
+      case ('yes', 'no')
+        run%nlgs_check_pass = lv == 'yes'
       case default
         call bad()
       end select

@@ -191,12 +191,12 @@ contains
   !>     cohesive contact (0: none; see gs_sweep_2d for coh), any_coh: some is;
   !>   bv(6, *) one record per body: v (3) and the inverse mass (3);
   !>   r(2, n), status(n) in sweep order.
-  !> A check pass (check) is LMGC90's convergence check: every contact's local
-  !> solution is computed from the current state and compared with its current
-  !> reaction (statuses written, norm sums accumulated) but nothing is applied.
-  !> Sweeps without check and without cohesive contacts run a lean loop
-  !> (sweep_plain, the local solver inlined).
-  subroutine gs_sweep_2d_packed(n, cb, cr, icoh, any_coh, coh, r, status, bv, relax, check, sums, maxes)
+  !> With check, statuses are written and the norm sums accumulated; with
+  !> evaluate_only too, nothing is applied: LMGC90's check pass, every contact's
+  !> local solution computed from the current state and compared with its
+  !> current reaction. Sweeps without check and without cohesive contacts run a
+  !> lean loop (sweep_plain, the local solver inlined).
+  subroutine gs_sweep_2d_packed(n, cb, cr, icoh, any_coh, coh, r, status, bv, relax, check, sums, maxes, evaluate_only)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
     real(wp), intent(in) :: cr(pk_size, n)
@@ -207,8 +207,12 @@ contains
     real(wp), intent(in) :: relax
     logical, intent(in) :: check
     real(wp), intent(out) :: sums(6), maxes(2)
+    logical, intent(in), optional :: evaluate_only
+    logical :: evaluate
+    evaluate = .false.
+    if (present(evaluate_only)) evaluate = evaluate_only
     if (check .or. any_coh) then
-      call sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes)
+      call sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes, evaluate)
     else
       sums = 0.0_wp
       maxes = 0.0_wp
@@ -274,7 +278,7 @@ contains
 
   !> Any sweep with cohesive contacts, or a check pass (statuses and LMGC90's
   !> norm sums, nothing applied). gs_sweep_2d's loop without its indirections.
-  subroutine sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes)
+  subroutine sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes, evaluate_only)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
     real(wp), intent(in) :: cr(pk_size, n)
@@ -282,7 +286,7 @@ contains
     real(wp), intent(inout) :: r(2, n), bv(6, *)
     integer, intent(inout) :: status(n)
     real(wp), intent(in) :: relax
-    logical, intent(in) :: check
+    logical, intent(in) :: check, evaluate_only
     real(wp), intent(out) :: sums(6), maxes(2)
     integer :: k, a, o
     real(wp) :: n1, n2, dvx, dvy, ut, un, rt0, rn0, rt, rn, drt, drn, px, py
@@ -297,7 +301,7 @@ contains
       un = dvx * n1 + dvy * n2 + bv(3, a) * cr(4, k) - bv(3, o) * cr(6, k)
       rt0 = r(1, k); rn0 = r(2, k)
       call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
-      if (check) cycle        ! a check pass evaluates, it does not apply
+      if (evaluate_only) cycle        ! a check pass evaluates, it does not apply
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
@@ -384,7 +388,7 @@ contains
   !>     moves mv by G dr.
   !> Statuses and norm sums as gs_sweep_2d_packed: a check pass applies nothing.
   subroutine gs_sweep_mesh(n, cr, side, gm, mfirst, slot, wt, icoh, coh, r, status, bv, mv, gmat, relax, check, &
-                           sums, maxes)
+                           sums, maxes, evaluate_only)
     integer, intent(in) :: n
     real(wp), intent(in) :: cr(pk_size, n), wt(4, n), gmat(*)
     integer, intent(in) :: side(4, n), gm(2, n), mfirst(2, n), slot(4, n), icoh(n)
@@ -392,7 +396,7 @@ contains
     real(wp), intent(inout) :: r(2, n), bv(6, *), mv(*)
     integer, intent(inout) :: status(n)
     real(wp), intent(in) :: relax
-    logical, intent(in) :: check
+    logical, intent(in) :: check, evaluate_only
     real(wp), intent(out) :: sums(6), maxes(2)
     integer :: k, s, i, a, m, g0, v0
     real(wp) :: n1, n2, vx, vy, rot, ut, un, rt0, rn0, rt, rn, drt, drn, px, py, sgn
@@ -432,7 +436,7 @@ contains
       end if
       rt0 = r(1, k); rn0 = r(2, k)
       call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
-      if (check) cycle        ! a check pass evaluates, it does not apply
+      if (evaluate_only) cycle        ! a check pass evaluates, it does not apply
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle

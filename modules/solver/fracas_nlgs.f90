@@ -33,6 +33,7 @@ module fracas_nlgs
     real(wp) :: relax = 1.0_wp
     integer :: sweeps_per_check = 50
     integer :: max_checks = 400
+    logical :: check_pass = .true.    !< LMGC90's check pass (else the change of the last sweep)
     character(len=8) :: order = 'stored'
     integer :: seed = 1
   end type nlgs_settings_t
@@ -470,13 +471,21 @@ contains
           call rng_permute(solver%rng, solver%order(1:n))
           call pack_contacts()
         end if
-        do isweep = 1, solver%s%sweeps_per_check
-          call sweep(.false.)
-          report%sweeps = report%sweeps + 1
-        end do
-        ! LMGC90's check: one more pass that evaluates every contact's update
-        ! from the state the sweeps reached, without applying it.
-        call sweep(.true.)
+        if (solver%s%check_pass) then
+          do isweep = 1, solver%s%sweeps_per_check
+            call sweep(.false., .false.)
+            report%sweeps = report%sweeps + 1
+          end do
+          ! LMGC90's check: one more pass that evaluates every contact's update
+          ! from the state the sweeps reached, without applying it.
+          call sweep(.true., .true.)
+        else
+          ! The change of the block's last sweep.
+          do isweep = 1, solver%s%sweeps_per_check
+            call sweep(isweep == solver%s%sweeps_per_check, .false.)
+            report%sweeps = report%sweeps + 1
+          end do
+        end if
         call norms(report)
         if (report%converged) exit blocks
       end do blocks
@@ -783,17 +792,17 @@ contains
     end subroutine mesh_velocities
 
     !> One Gauss–Seidel sweep; with check, LMGC90's norm sums of this sweep.
-    subroutine sweep(check)
-      logical, intent(in) :: check
+    subroutine sweep(check, evaluate_only)
+      logical, intent(in) :: check, evaluate_only
       real(wp) :: s6(6), g6(6), gmax(2)
       integer :: np
       np = solver%np
       call gs_sweep_2d_packed(np, solver%pb, solver%pc, solver%pcoh, solver%any_coh, c%coh, solver%pr, solver%pst, solver%bv, &
-                              solver%s%relax, check, s6, maxes)
+                              solver%s%relax, check, s6, maxes, evaluate_only)
       if (solver%ng > 0) then
         call gs_sweep_mesh(solver%ng, solver%gc, solver%gside, solver%ggm, solver%gfirst, solver%gslot, solver%gwt, &
                            solver%gcoh, c%coh, solver%gr, solver%gst, solver%bv, solver%mv, solver%gmat, &
-                           solver%s%relax, check, g6, gmax)
+                           solver%s%relax, check, g6, gmax, evaluate_only)
         s6 = s6 + g6
         maxes = max(maxes, gmax)
       end if
