@@ -3,14 +3,15 @@
 program fracas
   use, intrinsic :: iso_fortran_env, only: output_unit, int64
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, warn, set_cleanup
+  use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged
   use fracas_strings, only: itoa, rtoa
   use fracas_datbox_text, only: parse_int
   use fracas_deck, only: deck_t
   use fracas_read_deck, only: read_deck
+  use fracas_mailx, only: mailx_solver_summary
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
   use fracas_output, only: output_t, output_open, output_vtk, output_outbox, output_snapshot, &
-                           output_series, output_close
+                           output_series, output_close, output_summary
   use fracas_version, only: version_string
   use fracas_state_guard, only: scene_check_start, scene_fault
   use fracas_restart, only: restart_save, restart_load
@@ -24,8 +25,8 @@ program fracas
   type(scene_t) :: sc
   type(output_t) :: out
   type(step_report_t) :: rep
-  integer :: i, nargs, nsteps, istep, first_step, every, unconverged, late, restart_step
-  integer :: vtk_frames, outbox_writes
+  integer :: i, nargs, nsteps, istep, first_step, every, unconverged, late, hdf5_every, first_unconverged
+  integer :: restart_step, vtk_frames, outbox_writes
   integer(int64) :: total_sweeps
   real(wp) :: late_max
   integer(int64) :: t0, t1, rate
@@ -71,6 +72,8 @@ contains
       case ('--set')
         i = i + 1
         settings = [character(len=1024) :: settings, argument_value(i, arg)]
+      case ('--fail-unconverged')
+        settings = [character(len=1024) :: settings, 'nlgs_unconverged=fail']
       case ('--version')
         write (output_unit, '(a)') 'fracas '//version_string
         return
@@ -107,13 +110,16 @@ contains
     end if
     first_step = sc%steps_done + 1
     if (check_only) then
-      write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'check: OK (', sc%bodies%n, ' bodies, ', sc%tactors%n, &
+      write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'check: OK (', sc%bodies%n + sc%meshes%n, ' bodies, ', sc%tactors%n, &
         ' contactors, ', size(sc%laws), ' contact laws, ', nsteps - first_step + 1, ' steps)'
       return
     end if
 
-    call output_open(out, sc, out_dir, case_dir, overwrite, deck%run%output_vtk_every > 0, .true.)
+    call output_open(out, sc, deck, out_dir, overwrite)
     call set_cleanup(close_incomplete)
+    if (.not. quiet .and. sc%meshes%n > 0) write (output_unit, '(a,i0,a,i0,a,i0,a)') 'fracas: ', sc%meshes%n, &
+      ' meshed bodies (', sc%meshes%nnodes, ' nodes, ', sc%meshes%nelem, ' elements); iteration matrices: '// &
+      mailx_solver_summary(sc%meshes)
     if (len(restart_file) > 0) then
       out%n_vtk = vtk_frames
       out%n_out = outbox_writes
@@ -124,7 +130,10 @@ contains
     end if
     every = deck%run%progress_every
     if (every <= 0) every = max(1, nsteps / 20)
+    hdf5_every = deck%run%output_hdf5_every
+    if (hdf5_every < 0) hdf5_every = max(1, nsteps / 100)   ! not given: about 100 snapshots
     total_sweeps = 0; unconverged = 0; worst_residual = 0.0_wp; late = 0; late_max = 0.0_wp
+    first_unconverged = 0
     call system_clock(t0, rate)
     do istep = first_step, nsteps
       call scene_step(sc, rep)
@@ -132,7 +141,6 @@ contains
       if (len(fault) > 0) call fatal('step '//itoa(sc%step)//' (t='//rtoa(sc%time)//'): '//fault// &
         '. The run stops; '//out_dir//'/OUTBOX/fracas.h5 holds the steps before it and is marked incomplete')
       total_sweeps = total_sweeps + rep%nlgs%sweeps
-      if (.not. rep%nlgs%converged) unconverged = unconverged + 1
       worst_residual = max(worst_residual, rep%nlgs%residual)
       late = late + rep%late_contacts
       late_max = max(late_max, rep%late_overlap)
@@ -141,9 +149,9 @@ contains
       if (every_n(deck%run%output_dof_every) .or. (deck%run%output_dof_every == 0 .and. istep == nsteps)) &
         call output_outbox(out, sc)
       ! A restart point with every snapshot (which flushes the file) and at the last step.
-      if (every_n(deck%run%output_hdf5_every) .or. istep == nsteps) &
-        call restart_save(out%h5, sc, out%n_vtk, out%n_out)
-      if (every_n(deck%run%output_hdf5_every)) call output_snapshot(out, sc)
+      if (every_n(hdf5_every) .or. istep == nsteps) call restart_save(out%h5, sc, out%n_vtk, out%n_out)
+      if (every_n(hdf5_every)) call output_snapshot(out, sc)
+      if (.not. (rep%nlgs%converged .and. rep%newton_converged)) call not_converged()
       if (.not. quiet .and. (mod(istep, every) == 0 .or. istep == nsteps)) call progress()
     end do
     call output_close(out)
@@ -152,6 +160,7 @@ contains
       elapsed = real(t1 - t0, wp) / real(rate, wp)
       write (output_unit, '(a,i0,a,f0.3,a,i0,a,es9.2)') 'fracas: done: ', nsteps - first_step + 1, ' steps in ', elapsed, &
         ' s, ', total_sweeps, ' NLGS sweeps, worst natural-map residual ', worst_residual
+      write (output_unit, '(a)') 'fracas: output: '//output_summary(out)
       write (output_unit, '(a)') 'fracas: results: '//out_dir//'/OUTBOX/fracas.h5'
       if (deck%run%output_vtk_every > 0) write (output_unit, '(a)') 'fracas: ParaView: '//out_dir//'/DISPLAY/fracas.pvd'
     end if
@@ -165,15 +174,56 @@ contains
     end if
     if (unconverged > 0) then
       block
-        character(len=64) :: msg
-        write (msg, '(i0,a)') unconverged, ' steps reached the NLGS sweep limit without converging'
+        character(len=200) :: msg
+        write (msg, '(i0,a,i0,a,i0,a)') unconverged, ' of ', nsteps, ' steps reached the NLGS sweep limit without '// &
+          'converging (the first: step ', first_unconverged, '; OUTBOX/fracas.h5 series/converged = 0 marks them)'
+        if (deck%run%nlgs_unconverged == 'fail') call stop_run(trim(msg)//' (nlgs_unconverged = fail)', &
+                                                              exit_unconverged)
         call warn(trim(msg))
       end block
     end if
 
   end subroutine main
 
-  !> Clean-up on a fatal error after the output is open: fracas.h5 is closed
+  !> A step reached the sweep limit: say so (each of the first ones, then
+  !> every progress line counts them), and stop if the run control says so.
+  subroutine not_converged()
+    integer, parameter :: told_max = 10
+    character(len=300) :: msg
+    unconverged = unconverged + 1
+    if (first_unconverged == 0) first_unconverged = sc%step
+    if (rep%nlgs%converged) then
+      write (msg, '(a,i0,a,es11.4,a,i0,a)') 'step ', sc%step, ' (t=', sc%time, '): the Newton loop of the meshed '// &
+        'bodies did not converge in ', rep%newton_iterations, ' iterations (newton_max_iterations)'
+    else
+      write (msg, '(a,i0,a,es11.4,a,i0,a,es8.2,a)') 'step ', sc%step, ' (t=', sc%time, '): NLGS did not converge in ', &
+        rep%nlgs%sweeps, ' sweeps (norm/tolerance ', check_norm(), ' at the last check, below 1 needed)'
+    end if
+    if (deck%run%nlgs_unconverged == 'stop') then
+      call output_close(out, complete=.false., end_reason=trim(msg)//'; stopped: nlgs_unconverged = stop')
+      call stop_run(trim(msg)//'. The run stops (nlgs_unconverged = stop); '//out_dir// &
+                    '/OUTBOX/fracas.h5 holds the steps up to this one', exit_unconverged)
+    end if
+    if (quiet) return
+    if (unconverged <= told_max) then
+      write (output_unit, '(a)') 'fracas: '//trim(msg)
+      if (unconverged == told_max) write (output_unit, '(a)') 'fracas: (further unconverged steps are counted '// &
+        'in the progress lines)'
+      flush (output_unit)
+    end if
+  end subroutine not_converged
+
+  !> The norm the convergence check uses, over the tolerance.
+  real(wp) function check_norm()
+    select case (deck%run%nlgs_check)
+    case ('Maxm ')
+      check_norm = max(rep%nlgs%maxm_dv, rep%nlgs%maxm_dvr, abs(rep%nlgs%mean_dvor))
+    case default
+      check_norm = max(rep%nlgs%quad_dv, rep%nlgs%quad_dvr, abs(rep%nlgs%mean_dvor))
+    end select
+  end function check_norm
+
+  !> Clean-up on a fatal error once the output is open: fracas.h5 is closed
   !> with complete = 0, so that no reader takes it for a finished run.
   subroutine close_incomplete()
     call output_close(out, complete=.false.)
@@ -191,9 +241,12 @@ contains
     call system_clock(t1)
     el = real(t1 - t0, wp) / real(rate, wp)
     remaining = el / (istep - first_step + 1) * (nsteps - istep)
-    write (output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,i0,a,es9.2,a,f0.1,a,f0.1,a)') 'step ', istep, '/', nsteps, &
-      '  t=', sc%time, '  contacts ', rep%contacts, '  sweeps ', rep%nlgs%sweeps, '  residual ', &
+    write (output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,i0,a,es9.2,a,f0.1,a,f0.1,a)', advance='no') 'step ', istep, '/', &
+      nsteps, '  t=', sc%time, '  contacts ', rep%contacts, '  sweeps ', rep%nlgs%sweeps, '  residual ', &
       rep%nlgs%residual, '  elapsed ', el, ' s  remaining ', remaining, ' s'
+    if (.not. rep%nlgs%converged) write (output_unit, '(a)', advance='no') '  NOT CONVERGED'
+    if (unconverged > 0) write (output_unit, '(a,i0)', advance='no') '  unconverged steps ', unconverged
+    write (output_unit, '(a)') ''
     flush (output_unit)
   end subroutine progress
 
@@ -206,7 +259,10 @@ contains
       'options:', &
       '  --check            read and validate the deck, run nothing', &
       '  --command FILE     run-control deck to use instead of CASE_DIR/DATBOX/COMMAND.DAT', &
-      '  --set KEY=VALUE    override one COMMAND.DAT setting (repeatable)', &
+      '  --set KEY=VALUE    override one COMMAND.DAT setting (repeatable); without a', &
+      '                     COMMAND.DAT (LMGC90 decks), --set time_step=H --set number_of_steps=N', &
+      '                     is enough: every other setting has a default', &
+      '  --fail-unconverged the same as --set nlgs_unconverged=fail', &
       '  --output DIR       write OUTBOX/ and DISPLAY/ under DIR instead of CASE_DIR', &
       '  --overwrite        replace results already present', &
       '  --restart FILE     continue the run whose OUTBOX/fracas.h5 is FILE from its latest restart', &
@@ -214,6 +270,13 @@ contains
       '  --restart-step N   restart from the point of step N instead (written with every HDF5', &
       '                     snapshot and at the last step)', &
       '  --quiet, -q        no progress lines', &
-      '  --version, --help'
+      '  --version, --help', &
+      'exit status:', &
+      '  0  the run (or the check) went through', &
+      '  1  an error was reported (bad input, a failure during the run)', &
+      '  2  an error of the Fortran run-time library (a bug: please report it)', &
+      '  3  NLGS steps did not converge and nlgs_unconverged is fail (the run went to', &
+      '     its end) or stop (the run stopped at the first such step)', &
+      '  a signal (e.g. 137 for SIGKILL): fracas.h5 keeps complete = 0'
   end subroutine usage
 end program fracas

@@ -7,10 +7,10 @@ module fracas_contact_laws
   use fracas_deck, only: law_input_t
   use fracas_errors, only: input_error
   use fracas_ids, only: st_slifw, st_slibw, st_cslfw, st_cslbw
-  use fracas_czm, only: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo
+  use fracas_czm, only: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo, czm_beta_power
   implicit none
   private
-  public :: law_t, law_from_input, law_friction, law_shift, &
+  public :: law_t, law_from_input, law_friction, law_shift, law_local_problem, &
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
             law_vel_sgr_clb, law_rst_ds_clb, law_czm
 
@@ -229,4 +229,66 @@ contains
       end if
     end select
   end subroutine law_shift
+
+  !> The local problem law `law` poses on one contact this step, as a shifted
+  !> Signorini–Coulomb problem the exact local solver takes unchanged:
+  !> in: gap at the detection configuration, time step h, local velocity
+  !> u_begin (t, n) and status at the start of the step, cohesive internals
+  !> (L, ut, un, beta, TPSini; unused by other laws), the length carried by the
+  !> contact and its Delassus block w (tt, tn, nt, nn);
+  !> out: the velocity shift, friction mu, whether the contact takes a reaction
+  !> this step, and for a cohesive contact (beta > 0) the cohesive impulse
+  !> r_coh = a + K u~ eliminated locally: coh = (A (4), W' = A W (4), a (2),
+  !> K (2)), A = (I - W K)^-1; weff is the block the local solver solves with
+  !> (W, or W' with cohesion). solvable = .false. for a zero or singular block
+  !> (both sides driven): no contact reaction then, while the cohesive impulse
+  !> still follows from the law.
+  pure subroutine law_local_problem(law, gap, h, u_begin, status_begin, internals, length, w, &
+                                    shift, mu, active, cohesive, coh, weff, solvable)
+    type(law_t), intent(in) :: law
+    real(wp), intent(in) :: gap, h, u_begin(2), internals(:), length, w(4)
+    integer, intent(in) :: status_begin
+    real(wp), intent(out) :: shift(2), mu, coh(12), weff(4)
+    logical, intent(out) :: active, cohesive, solvable
+    real(wp) :: wt(4), beta, e, kt, kn, m(4), det, amat(4), wp_(4), at
+    call law_shift(law, gap, h, u_begin, shift, active)
+    mu = law_friction(law, status_begin)
+    cohesive = .false.
+    coh = 0.0_wp
+    wt = w
+    if (law%kind == law_czm) then
+      ! beta frozen over the step: friction mu (1 - beta)^p and the impulse
+      ! r_coh = a + K u~ (u~ = u + shift): (I - W K) u~ = u~free + W a + W r_c.
+      beta = internals(4)
+      mu = mu * (1.0_wp - beta)**law%czm%friction_power
+      if (beta > 0.0_wp) then
+        cohesive = .true.
+        e = beta**czm_beta_power(law%czm) * length
+        kt = -h**2 * e * law%czm%ct
+        kn = -h**2 * e * law%czm%cn
+        at = -h * e * law%czm%ct * internals(2)     ! tangential jump at the beginning of the step
+        m = [1.0_wp - wt(1) * kt, -wt(2) * kn, -wt(3) * kt, 1.0_wp - wt(4) * kn]
+        det = m(1) * m(4) - m(2) * m(3)
+        amat = [m(4), -m(2), -m(3), m(1)] / det
+        wp_(1) = amat(1) * wt(1) + amat(2) * wt(3)
+        wp_(2) = amat(1) * wt(2) + amat(2) * wt(4)
+        wp_(3) = amat(3) * wt(1) + amat(4) * wt(3)
+        wp_(4) = amat(3) * wt(2) + amat(4) * wt(4)
+        coh(1:4) = amat
+        coh(5:8) = wp_
+        coh(9:10) = [at, 0.0_wp]
+        coh(11:12) = [kt, kn]
+        ! The tensile cohesive impulse also acts while the gap is open, and
+        ! between bodies whose normal motion is driven.
+        active = .true.
+        weff = wp_
+        solvable = wp_(1) * wp_(4) - wp_(2) * wp_(3) > 1.0e-30_wp * max(wp_(4), tiny(1.0_wp))**2 .and. &
+                   wp_(4) > 1.0e-18_wp
+        return
+      end if
+    end if
+    weff = wt
+    active = active .and. wt(4) > 1.0e-18_wp
+    solvable = active
+  end subroutine law_local_problem
 end module fracas_contact_laws

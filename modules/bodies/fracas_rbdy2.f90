@@ -6,18 +6,12 @@ module fracas_rbdy2
   use fracas_kinds, only: wp
   use fracas_deck, only: driven_dof_input_t
   use fracas_errors, only: input_error
+  use fracas_drives, only: drive_t, drive_from_input, drive_value
   implicit none
   private
-  public :: rbdy2_t, drive_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
-            rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy, drive_value
+  public :: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
+            rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
 
-  !> A driven degree of freedom: imposed velocity or added force, as a function of time.
-  type :: drive_t
-    integer :: body = 0, dof = 0
-    logical :: is_velocity = .true.
-    real(wp) :: ct = 0.0_wp, amp = 0.0_wp, omega = 0.0_wp, phi = 0.0_wp, rampi = 0.0_wp, ramp = 0.0_wp
-    real(wp), allocatable :: evo_t(:), evo_v(:)   !< evolution table, used if allocated
-  end type drive_t
 
   type :: rbdy2_t
     integer :: n = 0
@@ -33,6 +27,7 @@ module fracas_rbdy2
     logical, allocatable :: clamped(:)          !< every dof velocity-driven
     real(wp) :: gravity(2) = 0.0_wp
     type(drive_t), allocatable :: drives(:)
+    logical :: driven_start_imposed = .true.    !< a driven dof starts a step at its imposed value
   end type rbdy2_t
 
 contains
@@ -68,15 +63,7 @@ contains
     type(drive_t) :: d
     if (inp%body < 1 .or. inp%body > b%n) &
       call input_error(inp%src%file, inp%src%line, 9, 'driven body number out of range')
-    d%body = inp%body
-    d%dof = inp%dof
-    d%is_velocity = inp%kind == 'vlocy'
-    d%ct = inp%ct; d%amp = inp%amp; d%omega = inp%omega; d%phi = inp%phi
-    d%rampi = inp%rampi; d%ramp = inp%ramp
-    if (inp%evolution) then
-      d%evo_t = inp%evo_t
-      d%evo_v = inp%evo_v
-    end if
+    d = drive_from_input(inp, inp%body)
     b%drives = [b%drives, d]
     if (d%is_velocity) then
       b%driven(d%dof, d%body) = .true.
@@ -85,32 +72,6 @@ contains
     end if
   end subroutine rbdy2_add_drive
 
-  !> Value of a driven dof at time t: (CT + AMP cos(OMEGA t + PHI)) min(1, RAMPI + RAMP t),
-  !> or the linear interpolation of its evolution table (end segments extrapolated).
-  pure real(wp) function drive_value(d, t) result(val)
-    type(drive_t), intent(in) :: d
-    real(wp), intent(in) :: t
-    integer :: lo, hi, mid, n
-    if (allocated(d%evo_t)) then
-      n = size(d%evo_t)
-      if (n == 1) then
-        val = d%evo_v(1)
-        return
-      end if
-      lo = 1; hi = n
-      do while (hi - lo > 1)
-        mid = (lo + hi) / 2
-        if (d%evo_t(mid) <= t) then
-          lo = mid
-        else
-          hi = mid
-        end if
-      end do
-      val = d%evo_v(lo) + (d%evo_v(hi) - d%evo_v(lo)) * (t - d%evo_t(lo)) / (d%evo_t(hi) - d%evo_t(lo))
-    else
-      val = (d%ct + d%amp * cos(d%omega * t + d%phi)) * min(1.0_wp, d%rampi + d%ramp * t)
-    end if
-  end function drive_value
 
   !> Start of a step [t, t+h]: external forces (gravity, theta-averaged driven
   !> forces), free velocity, imposed velocities at t+h. Sets v = vfree.
@@ -129,13 +90,15 @@ contains
           (1.0_wp - theta) * drive_value(d, t) + theta * drive_value(d, t + h)
       end associate
     end do
-    ! A driven dof moves with its imposed velocity at both ends of the step,
-    ! whatever the initial state said.
-    do k = 1, size(b%drives)
-      associate (d => b%drives(k))
-        if (d%is_velocity) b%vbegin(d%dof, d%body) = drive_value(d, t)
-      end associate
-    end do
+    ! A driven dof starts the step at its imposed value (LMGC90's RBDY2, whatever
+    ! DOF.INI said), or from its previous velocity; it ends at its imposed value.
+    if (b%driven_start_imposed) then
+      do k = 1, size(b%drives)
+        associate (d => b%drives(k))
+          if (d%is_velocity) b%vbegin(d%dof, d%body) = drive_value(d, t)
+        end associate
+      end do
+    end if
     b%vfree = b%vbegin + h * b%inv_mass * b%fext
     do k = 1, size(b%drives)
       associate (d => b%drives(k))

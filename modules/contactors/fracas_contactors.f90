@@ -1,22 +1,27 @@
-!> Contactors: the shapes attached to bodies (DISKx, xKSID, JONCx, POLYG), as one flat
-!> list over all bodies. A contactor maps to its body; its geometry is given in
-!> the body frame and placed with the body's configuration.
+!> Contactors: the shapes attached to bodies, as one flat list over all bodies.
+!> On rigid bodies (DISKx, xKSID, JONCx, POLYG) the geometry is given in the
+!> body frame and placed with the body's configuration; on meshed bodies
+!> (CLxxx candidate points on an edge, ALpxx polylines) it is given by mesh
+!> nodes and placed with their coordinates. A contactor maps to its body.
 module fracas_contactors
   use fracas_kinds, only: wp
-  use fracas_deck, only: body_input_t
+  use fracas_deck, only: body_input_t, tactor_input_t
   use fracas_errors, only: input_error
+  use fracas_ids, only: bm_rigid, bm_mesh
   implicit none
   private
   public :: tactors_t, tactors_build, tactor_center, tactor_kind_name, body_area_inertia, &
-            polygon_area_moments, tactor_vertices, tk_disk, tk_xksid, tk_jonc, tk_polyg
+            polygon_area_moments, tactor_vertices, tk_disk, tk_xksid, tk_jonc, tk_polyg, &
+            tk_clxxx, tk_alpxx, cl_point
 
-  integer, parameter :: tk_disk = 1, tk_xksid = 2, tk_jonc = 3, tk_polyg = 4
+  integer, parameter :: tk_disk = 1, tk_xksid = 2, tk_jonc = 3, tk_polyg = 4, tk_clxxx = 5, tk_alpxx = 6
   real(wp), parameter :: pi = acos(-1.0_wp)
 
   type :: tactors_t
     integer :: n = 0
     integer, allocatable :: kind(:)        !< tk_*
-    integer, allocatable :: body(:)        !< owning body index
+    integer, allocatable :: model(:)       !< body model (bm_rigid, bm_mesh)
+    integer, allocatable :: body(:)        !< owning body, index within its model
     integer, allocatable :: rank(:)        !< rank of the contactor within its body (1-based)
     integer, allocatable :: kind_index(:)  !< index among the contactors of the same kind
     character(len=5), allocatable :: color(:)
@@ -26,6 +31,12 @@ module fracas_contactors
     real(wp), allocatable :: bound(:)      !< radius of a circle around the contactor centre holding it
     integer, allocatable :: vfirst(:)      !< (n+1) POLYG: vertices vfirst(k) .. vfirst(k+1)-1 of vert
     real(wp), allocatable :: vert(:, :)    !< (2,*) POLYG vertices in the body frame, counter-clockwise
+    ! Mesh contactors: nodes nfirst(k) .. nfirst(k+1)-1 of `nodes` (mesh node
+    ! numbers over all meshed bodies). CLxxx: the edge (noda, nodb), the point
+    ! at (1 - apab) x_noda + apab x_nodb; ALpxx: the polyline's nodes in order.
+    integer, allocatable :: nfirst(:)      !< (n+1)
+    integer, allocatable :: nodes(:)
+    real(wp), allocatable :: apab(:)
   end type tactors_t
 
 contains
@@ -38,74 +49,130 @@ contains
     case (tk_xksid); name = 'xKSID'
     case (tk_jonc); name = 'JONCx'
     case (tk_polyg); name = 'POLYG'
+    case (tk_clxxx); name = 'CLxxx'
+    case (tk_alpxx); name = 'ALpxx'
     case default; name = '?????'
     end select
   end function tactor_kind_name
 
-  !> Flatten the contactors of all bodies into one list.
+  !> Flatten the contactors of all bodies into one list. Bodies are numbered
+  !> within their model in the order given; mesh nodes over all meshed bodies
+  !> in the same order (body b's node i is the i-th after the nodes of the
+  !> meshed bodies before it).
   subroutine tactors_build(bodies, t)
     type(body_input_t), intent(in) :: bodies(:)
     type(tactors_t), intent(out) :: t
-    integer :: ib, it, k, n, counts(4), nv
+    integer :: ib, it, k, n, counts(6), nv, nnod, nrigid, nmesh, node_offset
     n = 0
     nv = 0
+    nnod = 0
     do ib = 1, size(bodies)
       if (.not. allocated(bodies(ib)%tactors)) cycle
       n = n + size(bodies(ib)%tactors)
       do it = 1, size(bodies(ib)%tactors)
         if (allocated(bodies(ib)%tactors(it)%vertices)) nv = nv + size(bodies(ib)%tactors(it)%vertices, 2)
+        if (allocated(bodies(ib)%tactors(it)%nodes)) nnod = nnod + size(bodies(ib)%tactors(it)%nodes)
       end do
     end do
     t%n = n
-    allocate (t%kind(n), t%body(n), t%rank(n), t%kind_index(n), t%color(n), t%radius(n), t%ax1(n), &
-              t%ax2(n), t%shift(2, n), t%bound(n), t%vfirst(n + 1), t%vert(2, nv))
+    allocate (t%kind(n), t%model(n), t%body(n), t%rank(n), t%kind_index(n), t%color(n), t%radius(n), t%ax1(n), &
+              t%ax2(n), t%shift(2, n), t%bound(n), t%vfirst(n + 1), t%vert(2, nv), t%nfirst(n + 1), &
+              t%nodes(nnod), t%apab(n))
     t%vfirst(1) = 1
+    t%nfirst(1) = 1
     k = 0
     counts = 0
+    nrigid = 0
+    nmesh = 0
+    node_offset = 0
     do ib = 1, size(bodies)
-      if (.not. allocated(bodies(ib)%tactors)) cycle
-      do it = 1, size(bodies(ib)%tactors)
-        k = k + 1
-        associate (inp => bodies(ib)%tactors(it))
-          select case (inp%kind)
-          case ('DISKx', 'DISKb')
-            t%kind(k) = tk_disk
-          case ('xKSID')
-            t%kind(k) = tk_xksid
-          case ('JONCx')
-            t%kind(k) = tk_jonc
-          case ('POLYG')
-            t%kind(k) = tk_polyg
-          case default
-            call input_error(inp%src%file, inp%src%line, 2, "contactor '"//inp%kind// &
-              "' is read but not supported by the solver yet (supported: DISKx, DISKb, xKSID, JONCx, POLYG)")
-          end select
-          counts(t%kind(k)) = counts(t%kind(k)) + 1
-          t%kind_index(k) = counts(t%kind(k))
-          t%body(k) = ib
-          t%rank(k) = it
-          t%color(k) = inp%color
-          t%radius(k) = inp%radius
-          t%ax1(k) = inp%ax1
-          t%ax2(k) = inp%ax2
-          t%shift(:, k) = inp%shift
-          t%vfirst(k + 1) = t%vfirst(k)
-          select case (t%kind(k))
-          case (tk_jonc)
-            t%bound(k) = inp%ax1 + inp%ax2
-          case (tk_polyg)
-            ! Vertices stay in the body frame; the contactor centre is the body node.
-            nv = size(inp%vertices, 2)
-            t%vert(:, t%vfirst(k):t%vfirst(k) + nv - 1) = inp%vertices
-            t%vfirst(k + 1) = t%vfirst(k) + nv
-            t%bound(k) = sqrt(maxval(sum(inp%vertices**2, dim=1)))
-          case default
-            t%bound(k) = inp%radius
-          end select
-        end associate
-      end do
+      if (bodies(ib)%model == 'MAILx') then
+        nmesh = nmesh + 1
+      else
+        nrigid = nrigid + 1
+      end if
+      if (allocated(bodies(ib)%tactors)) then
+        do it = 1, size(bodies(ib)%tactors)
+          k = k + 1
+          call add_tactor(bodies(ib), bodies(ib)%tactors(it), it)
+        end do
+      end if
+      if (bodies(ib)%model == 'MAILx') node_offset = node_offset + size(bodies(ib)%node_coor, 2)
     end do
+
+  contains
+
+    subroutine add_tactor(bd, inp, rank)
+      type(body_input_t), intent(in) :: bd
+      type(tactor_input_t), intent(in) :: inp
+      integer, intent(in) :: rank
+      integer :: nn
+      select case (inp%kind)
+      case ('DISKx', 'DISKb')
+        t%kind(k) = tk_disk
+      case ('xKSID')
+        t%kind(k) = tk_xksid
+      case ('JONCx')
+        t%kind(k) = tk_jonc
+      case ('POLYG')
+        t%kind(k) = tk_polyg
+      case ('CLxxx')
+        t%kind(k) = tk_clxxx
+      case ('ALpxx')
+        t%kind(k) = tk_alpxx
+      case default
+        call input_error(inp%src%file, inp%src%line, 2, "contactor '"//inp%kind// &
+          "' is read but not supported by the solver yet (supported: DISKx, DISKb, xKSID, JONCx, POLYG, CLxxx, ALpxx)")
+      end select
+      counts(t%kind(k)) = counts(t%kind(k)) + 1
+      t%kind_index(k) = counts(t%kind(k))
+      if (bd%model == 'MAILx') then
+        t%model(k) = bm_mesh
+        t%body(k) = nmesh
+      else
+        t%model(k) = bm_rigid
+        t%body(k) = nrigid
+      end if
+      t%rank(k) = rank
+      t%color(k) = inp%color
+      t%radius(k) = inp%radius
+      t%ax1(k) = inp%ax1
+      t%ax2(k) = inp%ax2
+      t%shift(:, k) = inp%shift
+      t%apab(k) = inp%apab
+      t%vfirst(k + 1) = t%vfirst(k)
+      t%nfirst(k + 1) = t%nfirst(k)
+      select case (t%kind(k))
+      case (tk_jonc)
+        t%bound(k) = inp%ax1 + inp%ax2
+      case (tk_polyg)
+        ! Vertices stay in the body frame; the contactor centre is the body node.
+        nv = size(inp%vertices, 2)
+        t%vert(:, t%vfirst(k):t%vfirst(k) + nv - 1) = inp%vertices
+        t%vfirst(k + 1) = t%vfirst(k) + nv
+        t%bound(k) = sqrt(maxval(sum(inp%vertices**2, dim=1)))
+      case (tk_clxxx, tk_alpxx)
+        ! Placed from the nodes at each detection (bound set then).
+        nn = size(inp%nodes)
+        t%nodes(t%nfirst(k):t%nfirst(k) + nn - 1) = node_offset + inp%nodes
+        t%nfirst(k + 1) = t%nfirst(k) + nn
+        t%bound(k) = 0.0_wp
+      case default
+        t%bound(k) = inp%radius
+      end select
+    end subroutine add_tactor
   end subroutine tactors_build
+
+  !> Position of CLxxx point k for mesh node coordinates xn(2, nodes).
+  pure function cl_point(t, k, xn) result(p)
+    type(tactors_t), intent(in) :: t
+    integer, intent(in) :: k
+    real(wp), intent(in) :: xn(:, :)
+    real(wp) :: p(2)
+    associate (a => t%nodes(t%nfirst(k)), b => t%nodes(t%nfirst(k) + 1))
+      p = (1.0_wp - t%apab(k)) * xn(:, a) + t%apab(k) * xn(:, b)
+    end associate
+  end function cl_point
 
   !> Centre of contactor k for a body configuration q = (x, y, angle).
   pure function tactor_center(t, k, q) result(c)

@@ -16,7 +16,8 @@ module fracas_contacts
     logical :: with_cohesion = .false.       !< cohesive laws in the scene: internals and coh are allocated
     integer, allocatable :: inter(:)         !< interaction type id (fracas_ids)
     integer, allocatable :: cd(:), an(:)     !< candidate / antagonist contactor
-    integer, allocatable :: cdb(:), anb(:)   !< their bodies
+    integer, allocatable :: cdb(:), anb(:)   !< their bodies (index within their model)
+    integer, allocatable :: cdm(:), anm(:)   !< their body models (bm_rigid, bm_mesh)
     integer, allocatable :: law(:)           !< index in the law table
     integer, allocatable :: sub(:)           !< key of the contact within its pair (candidate polygon vertex, else 0)
     integer, allocatable :: cdver(:), anseg(:)  !< polygon vertex / edge involved (0 if none)
@@ -40,6 +41,13 @@ module fracas_contacts
     real(wp), allocatable :: internals(:, :) !< (n_internals,n)
     logical, allocatable :: cohesive(:)
     real(wp), allocatable :: coh(:, :)       !< (12,n)
+    ! Meshed sides (scenes with meshes only): the nodes (mesh node numbers)
+    ! and weights that give the velocity of the contact point on each side:
+    ! v = mwt(1) v(mnode(1)) + mwt(2) v(mnode(2)) for the candidate, 3:4 for
+    ! the antagonist; 0 nodes on a rigid side.
+    logical :: with_mesh = .false.
+    integer, allocatable :: mnode(:, :)      !< (4,n)
+    real(wp), allocatable :: mwt(:, :)       !< (4,n)
   end type contacts_t
 
   !> Contacts of the previous step, grouped by candidate contactor.
@@ -64,7 +72,7 @@ contains
       call free_all()
     end if
     cap = max(16, n + n / 2)
-    allocate (c%inter(cap), c%cd(cap), c%an(cap), c%cdb(cap), c%anb(cap), c%law(cap), c%sub(cap), &
+    allocate (c%inter(cap), c%cd(cap), c%an(cap), c%cdb(cap), c%anb(cap), c%cdm(cap), c%anm(cap), c%law(cap), c%sub(cap), &
               c%cdver(cap), c%anseg(cap), c%status(cap), &
               c%status_begin(cap), c%normal(2, cap), c%point(2, cap), c%gap(cap), c%lever(4, cap), &
               c%w(4, cap), c%shift(2, cap), c%mu(cap), c%active(cap), c%r(2, cap), c%u(2, cap), &
@@ -75,12 +83,17 @@ contains
     else
       allocate (c%internals(n_internals, 0), c%coh(12, 0))
     end if
+    if (c%with_mesh) then
+      allocate (c%mnode(4, cap), c%mwt(4, cap))
+    else
+      allocate (c%mnode(4, 0), c%mwt(4, 0))
+    end if
   contains
     subroutine free_all()
-      deallocate (c%inter, c%cd, c%an, c%cdb, c%anb, c%law, c%sub, c%cdver, c%anseg, c%status, &
+      deallocate (c%inter, c%cd, c%an, c%cdb, c%anb, c%cdm, c%anm, c%law, c%sub, c%cdver, c%anseg, c%status, &
                   c%status_begin, c%normal, &
                   c%point, c%gap, c%lever, c%w, c%shift, c%mu, c%active, c%r, c%u, c%u_begin, c%wi, &
-                  c%length, c%internals, c%cohesive, c%coh)
+                  c%length, c%internals, c%cohesive, c%coh, c%mnode, c%mwt)
     end subroutine free_all
   end subroutine contacts_reserve
 

@@ -6,8 +6,11 @@ module fracas_detection
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_deck, only: see_rule_input_t
   use fracas_errors, only: input_error
-  use fracas_ids, only: i_dkdkx, i_dkjcx, i_dkkdx, i_dkplx, i_plplx, i_pljcx, st_noctc
-  use fracas_contactors, only: tactors_t, tactor_center, tactor_vertices, tk_disk, tk_xksid, tk_jonc, tk_polyg
+  use fracas_ids, only: i_dkdkx, i_dkjcx, i_dkkdx, i_dkplx, i_plplx, i_pljcx, i_clalp, i_cljcx, i_dkalp, i_plalp, &
+                        st_noctc, bm_rigid, bm_mesh
+  use fracas_contactors, only: tactors_t, tactor_center, tactor_vertices, tk_disk, tk_xksid, tk_jonc, tk_polyg, &
+                               tk_clxxx, tk_alpxx, cl_point
+  use fracas_mesh_pairs, only: point_polyline, point_segment_distance
   use fracas_contacts, only: contacts_t, contacts_reserve
   use fracas_dkdkx, only: dkdkx_geometry
   use fracas_dkjcx, only: dkjcx_geometry
@@ -23,7 +26,9 @@ module fracas_detection
     integer, allocatable :: cls(:)             !< class (kind, colour) of each contactor
     integer, allocatable :: rule_law(:, :)     !< (cd class, an class) -> law index, 0: none
     real(wp), allocatable :: rule_alert(:, :)  !< alert distance of that rule
+    logical, allocatable :: may_meet(:, :)     !< (class, class): some rule pairs them, either way
     real(wp) :: max_alert = 0.0_wp
+    real(wp) :: rigid_median = 0.0_wp          !< median bound of disks and polygons
     logical, allocatable :: small(:)           !< binned in the cell grid (ordinary disks)
     ! rough pairs, kept between rough detections (candidate first)
     integer :: npairs = 0
@@ -43,6 +48,10 @@ contains
     if (kcd == tk_disk .and. kan == tk_polyg) inter_of = i_dkplx
     if (kcd == tk_polyg .and. kan == tk_polyg) inter_of = i_plplx
     if (kcd == tk_polyg .and. kan == tk_jonc) inter_of = i_pljcx
+    if (kcd == tk_clxxx .and. kan == tk_alpxx) inter_of = i_clalp
+    if (kcd == tk_clxxx .and. kan == tk_jonc) inter_of = i_cljcx
+    if (kcd == tk_disk .and. kan == tk_alpxx) inter_of = i_dkalp
+    if (kcd == tk_polyg .and. kan == tk_alpxx) inter_of = i_plalp
   end function inter_of
 
   !> Build the see table from the $seety rules. law_nicknames(i) names law i.
@@ -83,8 +92,8 @@ contains
           s%behav//"' that TACT_BEHAV.DAT does not define")
         if (s%alert < 0.0_wp) call input_error(s%src%file, s%src%line, 55, &
           'alert distance must be >= 0')
-        if (s%cdbdy /= 'RBDY2' .or. s%anbdy /= 'RBDY2') call input_error(s%src%file, s%src%line, 2, &
-          'see rule body model must be RBDY2 (the only body model supported yet)')
+        call check_body_model(s, s%cdbdy, s%cdtac, 2)
+        call check_body_model(s, s%anbdy, s%antac, 44)
         icd = find_cls(s%cdtac, s%cdcol)
         ian = find_cls(s%antac, s%ancol)
         if (icd == 0 .or. ian == 0) cycle   ! no contactor of that class: the rule is unused
@@ -93,17 +102,41 @@ contains
         det%max_alert = max(det%max_alert, s%alert)
       end associate
     end do
+    ! The broad phase rejects most pairs (two points, two segments) at once.
+    allocate (det%may_meet(det%ncls, det%ncls))
+    do j = 1, det%ncls
+      do k = 1, det%ncls
+        det%may_meet(k, j) = (det%rule_law(k, j) /= 0 .and. inter_of(kind_of_name(cls_kind(k)), &
+                                                                    kind_of_name(cls_kind(j))) /= 0) .or. &
+                             (det%rule_law(j, k) /= 0 .and. inter_of(kind_of_name(cls_kind(j)), &
+                                                                    kind_of_name(cls_kind(k))) /= 0)
+      end do
+    end do
     ! Ordinary disks and polygons go into the cell grid; much larger ones (and
-    ! walls, drums) are "big" and tested against all.
+    ! walls, drums) are "big" and tested against all. Mesh contactors are
+    ! sorted at each rough detection (their size follows the mesh).
     allocate (det%small(t%n))
     radii = pack(t%bound, t%kind == tk_disk .or. t%kind == tk_polyg)
     rmed = 0.0_wp
     if (size(radii) > 0) rmed = median(radii)
+    det%rigid_median = rmed
     det%small = (t%kind == tk_disk .or. t%kind == tk_polyg) .and. t%bound <= 10.0_wp * rmed
     det%npairs = 0
     allocate (det%pair_cd(0), det%pair_an(0), det%pair_inter(0), det%pair_law(0), det%pair_alert(0))
 
   contains
+
+    !> A see rule's body model must be the one its contactor type lives on.
+    subroutine check_body_model(rule, bdy, tac, col)
+      type(see_rule_input_t), intent(in) :: rule
+      character(len=5), intent(in) :: bdy, tac
+      integer, intent(in) :: col
+      character(len=5) :: expected
+      expected = 'RBDY2'
+      if (tac == 'CLxxx' .or. tac == 'ALpxx') expected = 'MAILx'
+      if (bdy /= expected) call input_error(rule%src%file, rule%src%line, col, "see rule: contactor '"//tac// &
+        "' belongs to body model "//expected//", found '"//bdy//"'")
+    end subroutine check_body_model
 
     integer function find_cls(kind, color)
       character(len=5), intent(in) :: kind, color
@@ -114,6 +147,15 @@ contains
       end do
     end function find_cls
 
+    integer function kind_of_name(name)
+      character(len=5), intent(in) :: name
+      integer :: kk
+      kind_of_name = 0
+      do kk = 1, 6
+        if (kind_name(kk) == name) kind_of_name = kk
+      end do
+    end function kind_of_name
+
     function kind_name(kind) result(name)
       integer, intent(in) :: kind
       character(len=5) :: name
@@ -121,59 +163,84 @@ contains
       case (tk_disk); name = 'DISKx'
       case (tk_xksid); name = 'xKSID'
       case (tk_polyg); name = 'POLYG'
+      case (tk_clxxx); name = 'CLxxx'
+      case (tk_alpxx); name = 'ALpxx'
       case default; name = 'JONCx'
       end select
     end function kind_name
   end subroutine detection_init
 
+  !> Median (upper median for an even count) by quickselect: linear on average.
   real(wp) function median(x)
     real(wp), intent(in) :: x(:)
     real(wp), allocatable :: s(:)
-    integer :: i, j
-    real(wp) :: key
+    integer :: lo, hi, i, j, k
+    real(wp) :: pivot, tmp
     s = x
-    do i = 2, size(s)          ! insertion sort is fine: called once
-      key = s(i)
-      j = i - 1
-      do while (j >= 1)
-        if (s(j) <= key) exit
-        s(j + 1) = s(j)
-        j = j - 1
+    k = (size(s) + 1) / 2
+    lo = 1; hi = size(s)
+    do while (lo < hi)
+      pivot = s((lo + hi) / 2)
+      i = lo; j = hi
+      do while (i <= j)
+        do while (s(i) < pivot)
+          i = i + 1
+        end do
+        do while (s(j) > pivot)
+          j = j - 1
+        end do
+        if (i <= j) then
+          tmp = s(i); s(i) = s(j); s(j) = tmp
+          i = i + 1; j = j - 1
+        end if
       end do
-      s(j + 1) = key
+      if (k <= j) then
+        hi = j
+      else if (k >= i) then
+        lo = i
+      else
+        exit
+      end if
     end do
-    median = s((size(s) + 1) / 2)
+    median = s(k)
   end function median
 
   !> Broad phase: every pair of contactors of different bodies, allowed by the
   !> see table, whose bounding circles come within alert + margin. Ordinary
-  !> disks and polygons are binned in square cells; big contactors are tested
-  !> against all. Cells are visited row by row, each against the forward half of
-  !> its neighbours, so pairs come in cell order (spatially sorted contacts).
-  !> The grid is dense (a counting sort) while it has at most about 4 cells per
-  !> contactor; a sparse scene (bodies far apart or one far away) keeps only its
-  !> occupied cells, sorted by (row, column): memory stays linear whatever the
-  !> distances. With the same cell size both give the same pairs in the same order.
-  !> Contactors whose centre is not finite are left out (the run's state check
-  !> stops such a run at the end of the step).
-  !> movable(b) is false for bodies whose every dof is driven.
+  !> disks, polygons and mesh contactors are binned in square cells; big
+  !> contactors are tested against all. Cells are visited row by row, each
+  !> against the forward half of its neighbours, so pairs come in cell order
+  !> (spatially sorted contacts). The grid is dense (a counting sort) while it
+  !> has at most about 4 cells per contactor; a sparse scene (bodies far apart or
+  !> one far away) keeps only its occupied cells, sorted by (row, column): memory
+  !> stays linear whatever the distances. With the same cell size both give the
+  !> same pairs in the same order. Contactors whose centre is not finite are left
+  !> out (the run's state check stops such a run at the end of the step).
+  !> q(3, rigid bodies) places rigid contactors, xn(2, mesh nodes) mesh ones.
+  !> movable / mesh_movable: false for bodies whose every dof is driven.
   !> sparse_grid forces the sparse cells (tests).
-  subroutine detect_rough(det, t, q, movable, margin, sparse_grid)
+  subroutine detect_rough(det, t, q, movable, margin, xn, mesh_movable, sparse_grid)
     type(detection_t), intent(inout) :: det
     type(tactors_t), intent(in) :: t
     real(wp), intent(in) :: q(:, :), margin
     logical, intent(in) :: movable(:)
+    real(wp), intent(in), optional :: xn(:, :)
+    logical, intent(in), optional :: mesh_movable(:)
     logical, intent(in), optional :: sparse_grid
-    real(wp), allocatable :: c(:, :)
+    real(wp), allocatable :: c(:, :), bound(:)
     integer, allocatable :: cell_of(:), cell_start(:), items(:), fill(:), bigs(:)
     integer(i8), allocatable :: key(:), cell_key(:)
     logical, allocatable :: binned(:), usable(:)
     integer :: k, j, nx, ny, ix, iy, jx, jy, cell, p, nsmall, ib, ncell
     real(wp) :: lo(2), hi(2), size_cell, reach_cell, rmax, cells
     logical :: sparse
-    allocate (c(2, t%n))
+    allocate (c(2, t%n), bound(t%n))
     do k = 1, t%n
-      c(:, k) = tactor_center(t, k, q(:, t%body(k)))
+      call placement(t, k, q, xn, c(:, k), bound(k))
+      ! Mesh contactors join the grid unless much larger than the rigid ones
+      ! (a long polyline is tested against all, as a wall).
+      if (t%model(k) == bm_mesh) det%small(k) = t%kind(k) == tk_clxxx .or. &
+        det%rigid_median <= 0.0_wp .or. bound(k) <= 10.0_wp * det%rigid_median
     end do
     usable = ieee_is_finite(c(1, :)) .and. ieee_is_finite(c(2, :))
     binned = det%small .and. usable
@@ -181,7 +248,7 @@ contains
     nsmall = count(binned)
     bigs = pack([(k, k=1, t%n)], .not. det%small .and. usable)
     if (nsmall > 0) then
-      rmax = maxval(t%bound, mask=binned)
+      rmax = maxval(bound, mask=binned)
       reach_cell = 2.0_wp * rmax + det%max_alert + margin
       lo = [minval(c(1, :), mask=binned), minval(c(2, :), mask=binned)]
       hi = [maxval(c(1, :), mask=binned), maxval(c(2, :), mask=binned)]
@@ -323,8 +390,15 @@ contains
       integer, intent(in) :: a, b
       integer :: icd, ian, inter, law
       real(wp) :: alert, dist, reach
-      if (t%body(a) == t%body(b)) return
-      if (.not. (movable(t%body(a)) .or. movable(t%body(b)))) return
+      if (.not. det%may_meet(det%cls(a), det%cls(b))) return
+      ! Most pairs of neighbouring cells are far apart: reject them first.
+      if (t%kind(a) /= tk_xksid .and. t%kind(b) /= tk_xksid) then
+        reach = bound(a) + bound(b) + det%max_alert + margin
+        if ((c(1, a) - c(1, b))**2 + (c(2, a) - c(2, b))**2 > reach**2) return
+      end if
+      if (t%body(a) == t%body(b) .and. t%model(a) == t%model(b)) return
+      ! Bodies whose every dof is driven still interact (a cohesive interface
+      ! tested by driving both sides): LMGC90 keeps their contacts too.
       ! Orientation: the interaction type decides which side is the candidate;
       ! for two disks the lower index is the candidate unless only the reverse rule exists.
       icd = a; ian = b
@@ -350,12 +424,13 @@ contains
       dist = norm2(c(:, icd) - c(:, ian))
       reach = alert + margin
       if (t%kind(ian) == tk_xksid) then
-        if (dist + t%bound(icd) < t%radius(ian) - reach) return
+        if (dist + bound(icd) < t%radius(ian) - reach) return
       else
-        if (dist > t%bound(icd) + t%bound(ian) + reach) return
+        if (dist > bound(icd) + bound(ian) + reach) return
       end if
       call push_pair(icd, ian, inter, law, alert)
     end subroutine consider
+
 
     subroutine push_pair(icd, ian, inter, law, alert)
       integer, intent(in) :: icd, ian, inter, law
@@ -422,6 +497,33 @@ contains
       width = 2 * width
     end do
   end subroutine sort_by_key
+  !> Centre and bounding radius of contactor k: rigid shapes from their body's
+  !> configuration q, mesh contactors from the node coordinates xn.
+  subroutine placement(t, k, q, xn, centre, bound)
+    type(tactors_t), intent(in) :: t
+    integer, intent(in) :: k
+    real(wp), intent(in) :: q(:, :)
+    real(wp), intent(in), optional :: xn(:, :)
+    real(wp), intent(out) :: centre(2), bound
+    real(wp) :: lo(2), hi(2)
+    integer :: j
+    select case (t%kind(k))
+    case (tk_clxxx)
+      centre = cl_point(t, k, xn)
+      bound = 0.0_wp
+    case (tk_alpxx)
+      lo = huge(1.0_wp); hi = -huge(1.0_wp)
+      do j = t%nfirst(k), t%nfirst(k + 1) - 1
+        lo = min(lo, xn(:, t%nodes(j)))
+        hi = max(hi, xn(:, t%nodes(j)))
+      end do
+      centre = 0.5_wp * (lo + hi)
+      bound = 0.5_wp * norm2(hi - lo)
+    case default
+      centre = tactor_center(t, k, q(:, t%body(k)))
+      bound = t%bound(k)
+    end select
+  end subroutine placement
 
   pure function grow_real(a) result(b)
     real(wp), intent(in) :: a(:)
@@ -431,51 +533,80 @@ contains
   end function grow_real
 
 
-  !> Fine detection of the rough pairs at configuration q: every pair whose gap
-  !> is within its alert distance becomes a contact (polygon pairs: up to two)
-  !> with its local frame, gap, contact point and lever arms.
-  subroutine detect_fine(det, t, q, c)
+  !> Fine detection of the rough pairs at configuration q (rigid bodies) and
+  !> xn (mesh nodes): every pair whose gap is within its alert distance becomes
+  !> a contact (polygon pairs: up to two; a disk against a polyline: one per
+  !> segment within the alert distance) with its local frame, gap, contact
+  !> point, and lever arms (rigid sides) or nodes and weights (mesh sides).
+  !> With the step's free velocities (vq rigid, vm mesh nodes) and time step h,
+  !> a pair is also a contact when its predicted gap, gap + h min(0, u_n), is
+  !> within the alert distance: bodies approaching faster than alert / h are
+  !> caught before they overlap (doc/solver.md).
+  subroutine detect_fine(det, t, q, c, xn, vq, vm, h)
     type(detection_t), intent(in) :: det
     type(tactors_t), intent(in) :: t
     real(wp), intent(in) :: q(:, :)
     type(contacts_t), intent(inout) :: c
-    integer :: p, icd, ian, bcd, ban, iedge, j
-    real(wp) :: gap, normal(2), point(2), ccd(2), can(2), len
+    real(wp), intent(in), optional :: xn(:, :), vq(:, :), vm(:, :), h
+    integer :: p, icd, ian, bcd, ban, iedge, j, nmax, seg, na, nb
+    real(wp) :: gap, normal(2), point(2), ccd(2), can(2), len, s, pcl(2), reach, alert
     real(wp), allocatable :: pcd(:, :), pan(:, :)
+    integer :: mnode(4)
+    real(wp) :: mwt(4)
+    logical :: found
     type(polygon_contact_t) :: pc
-    call contacts_reserve(c, 2 * det%npairs)
+    ! At most two contacts per pair, one per segment (disk) or vertex (polygon) against a polyline.
+    nmax = 0
+    do p = 1, det%npairs
+      select case (det%pair_inter(p))
+      case (i_dkalp)
+        nmax = nmax + t%nfirst(det%pair_an(p) + 1) - t%nfirst(det%pair_an(p))
+      case (i_plalp)
+        nmax = nmax + t%vfirst(det%pair_cd(p) + 1) - t%vfirst(det%pair_cd(p))
+      case default
+        nmax = nmax + 2
+      end select
+    end do
+    call contacts_reserve(c, nmax)
     c%n = 0
     do p = 1, det%npairs
       icd = det%pair_cd(p)
       ian = det%pair_an(p)
       bcd = t%body(icd)
       ban = t%body(ian)
-      ccd = tactor_center(t, icd, q(:, bcd))
-      can = tactor_center(t, ian, q(:, ban))
+      mnode = 0
+      mwt = 0.0_wp
+      ! Candidates are looked for up to reach; add keeps those whose gap, or
+      ! predicted gap, is within the alert distance.
+      alert = det%pair_alert(p)
+      reach = alert
+      if (present(h)) reach = alert + h * (speed(icd) + speed(ian))
+      if (t%model(icd) == bm_rigid) ccd = tactor_center(t, icd, q(:, bcd))
+      if (t%model(ian) == bm_rigid) can = tactor_center(t, ian, q(:, ban))
       select case (det%pair_inter(p))
       case (i_dkdkx)
         call dkdkx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
         len = t%radius(icd) * t%radius(ian) / (t%radius(icd) + t%radius(ian))
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+        call add(icd, ian, 0, 0)
       case (i_dkjcx)
         call dkjcx_geometry(ccd, t%radius(icd), can, q(3, ban), t%ax1(ian), t%ax2(ian), gap, normal, point)
         len = t%radius(icd)
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+        call add(icd, ian, 0, 0)
       case (i_dkkdx)
         call dkkdx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
         len = t%radius(icd)
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+        call add(icd, ian, 0, 0)
       case (i_dkplx)
         pan = tactor_vertices(t, ian, q(:, ban))
         call dkplx_geometry(ccd, t%radius(icd), pan, gap, normal, point, iedge)
         len = t%radius(icd)
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, iedge)
+        call add(icd, ian, 0, iedge)
       case (i_plplx)
         ! The rough pair's first contactor (lower index) is preferred as the
         ! reference face, i.e. the antagonist (as LMGC90 chooses).
         pcd = tactor_vertices(t, icd, q(:, bcd))
         pan = tactor_vertices(t, ian, q(:, ban))
-        call polygon_pair(pcd, pan, det%pair_alert(p), .false., pc)
+        call polygon_pair(pcd, pan, reach, .false., pc)
         len = pair_length(pc, t%bound(icd) * t%bound(ian) / (t%bound(icd) + t%bound(ian)))
         do j = 1, pc%n
           gap = pc%gap(j); normal = pc%normal; point = pc%point(:, j)
@@ -487,23 +618,121 @@ contains
         end do
       case (i_pljcx)
         pcd = tactor_vertices(t, icd, q(:, bcd))
-        call polygon_pair(wall_rectangle(can, q(3, ban), t%ax1(ian), t%ax2(ian)), pcd, det%pair_alert(p), &
+        call polygon_pair(wall_rectangle(can, q(3, ban), t%ax1(ian), t%ax2(ian)), pcd, reach, &
                           .true., pc)
         len = pair_length(pc, t%bound(icd))
         do j = 1, pc%n
           gap = pc%gap(j); normal = pc%normal; point = pc%point(:, j)
           call add(icd, ian, pc%cdver(j), pc%anseg)
         end do
+      case (i_clalp)
+        ! A candidate point against the nearest facing segment of the polyline;
+        ! the candidate's edge must face the segment (outward normals opposed).
+        na = t%nodes(t%nfirst(icd)); nb = t%nodes(t%nfirst(icd) + 1)
+        point = cl_point(t, icd, xn)
+        call point_polyline(point, xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), reach, alert, &
+                            edge_normal(xn(:, na), xn(:, nb)), found, seg, s, gap, normal)
+        if (found) then
+          point = point - gap * normal        ! on the antagonist, as LMGC90 reports it
+          len = 0.5_wp * norm2(xn(:, nb) - xn(:, na))
+          call mesh_side(1, na, nb, t%apab(icd))
+          call mesh_side(3, t%nodes(t%nfirst(ian) + seg - 1), t%nodes(t%nfirst(ian) + seg), s)
+          call add(icd, ian, 0, seg)
+        end if
+      case (i_cljcx)
+        na = t%nodes(t%nfirst(icd)); nb = t%nodes(t%nfirst(icd) + 1)
+        pcl = cl_point(t, icd, xn)
+        call dkjcx_geometry(pcl, 0.0_wp, can, q(3, ban), t%ax1(ian), t%ax2(ian), gap, normal, point)
+        normal = normal + 0.0_wp            ! no signed zeros in the outputs
+        ! The point on the wall's surface, as LMGC90 reports it.
+        point = can + dot_product(pcl - can, [cos(q(3, ban)), sin(q(3, ban))]) * [cos(q(3, ban)), sin(q(3, ban))] + &
+                t%ax2(ian) * normal
+        len = 0.5_wp * norm2(xn(:, nb) - xn(:, na))
+        call mesh_side(1, na, nb, t%apab(icd))
+        call add(icd, ian, 0, 0)
+      case (i_dkalp)
+        ! LMGC90's DKALp: one contact per segment within the alert distance,
+        ! normal from the segment's nearest point to the disk centre; the
+        ! contact point is that nearest point. (LMGC90 writes a zero length.)
+        len = 0.0_wp
+        do seg = 1, t%nfirst(ian + 1) - t%nfirst(ian) - 1
+          na = t%nodes(t%nfirst(ian) + seg - 1); nb = t%nodes(t%nfirst(ian) + seg)
+          call point_segment_distance(ccd, xn(:, na), xn(:, nb), s, gap, normal, point)
+          gap = gap - t%radius(icd)
+          if (gap > reach) cycle
+          call mesh_side(3, na, nb, s)
+          call add(icd, ian, seg, seg)
+        end do
+      case (i_plalp)
+        ! Each polygon vertex against the nearest facing segment of the polyline.
+        pcd = tactor_vertices(t, icd, q(:, bcd))
+        len = 0.0_wp
+        do j = 1, size(pcd, 2)
+          call point_polyline(pcd(:, j), xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), reach, alert, &
+                              vertex_normal(pcd, j), found, seg, s, gap, normal)
+          if (.not. found) cycle
+          point = pcd(:, j) - gap * normal
+          call mesh_side(3, t%nodes(t%nfirst(ian) + seg - 1), t%nodes(t%nfirst(ian) + seg), s)
+          call add(icd, ian, j, seg)
+        end do
       end select
     end do
 
   contains
 
-    !> Append a contact; its history key within the pair is the candidate vertex.
+    !> Bound on the speed of contactor k's points over the step.
+    real(wp) function speed(k)
+      integer, intent(in) :: k
+      integer :: j
+      speed = 0.0_wp
+      if (t%model(k) == bm_mesh) then
+        do j = t%nfirst(k), t%nfirst(k + 1) - 1
+          speed = max(speed, norm2(vm(:, t%nodes(j))))
+        end do
+      else
+        speed = norm2(vq(1:2, t%body(k))) + abs(vq(3, t%body(k))) * (t%bound(k) + norm2(t%shift(:, k)))
+      end if
+    end function speed
+
+    !> Normal relative velocity (candidate minus antagonist) of the current
+    !> contact point over the step, from the free velocities.
+    real(wp) function approach(kcd, kan)
+      integer, intent(in) :: kcd, kan
+      approach = dot_product(point_velocity(kcd, 1) - point_velocity(kan, 3), normal)
+    end function approach
+
+    function point_velocity(k, first) result(v)
+      integer, intent(in) :: k, first
+      real(wp) :: v(2), r(2)
+      integer :: b
+      if (t%model(k) == bm_mesh) then
+        v = mwt(first) * vm(:, mnode(first)) + mwt(first + 1) * vm(:, mnode(first + 1))
+      else
+        b = t%body(k)
+        r = point - q(1:2, b)
+        v = vq(1:2, b) + vq(3, b) * [-r(2), r(1)]
+      end if
+    end function point_velocity
+
+    !> Nodes and weights of a mesh side (first = 1: candidate, 3: antagonist):
+    !> the point at (1 - s) x_a + s x_b.
+    subroutine mesh_side(first, a, b, s)
+      integer, intent(in) :: first, a, b
+      real(wp), intent(in) :: s
+      mnode(first:first + 1) = [a, b]
+      mwt(first:first + 1) = [1.0_wp - s, s]
+    end subroutine mesh_side
+
+    !> Append a contact; its history key within the pair is the candidate vertex
+    !> (polygons) or the antagonist segment (a disk against a polyline).
     subroutine add(kcd, kan, cdver, anseg)
       integer, intent(in) :: kcd, kan, cdver, anseg
       integer :: k, b1, b2
       real(wp) :: tang(2), rcd(2), ran(2)
+      if (gap > alert) then
+        if (.not. present(h)) return
+        if (gap + h * min(0.0_wp, approach(kcd, kan)) > alert) return
+      end if
       c%n = c%n + 1
       k = c%n
       b1 = t%body(kcd); b2 = t%body(kan)
@@ -512,6 +741,8 @@ contains
       c%an(k) = kan
       c%cdb(k) = b1
       c%anb(k) = b2
+      c%cdm(k) = t%model(kcd)
+      c%anm(k) = t%model(kan)
       c%law(k) = det%pair_law(p)
       c%sub(k) = cdver
       c%cdver(k) = cdver
@@ -521,17 +752,49 @@ contains
       c%gap(k) = gap
       c%length(k) = len
       tang = [normal(2), -normal(1)]
-      rcd = point - q(1:2, b1)
-      ran = point - q(1:2, b2)
-      c%lever(1, k) = cross(rcd, tang)
-      c%lever(2, k) = cross(rcd, normal)
-      c%lever(3, k) = cross(ran, tang)
-      c%lever(4, k) = cross(ran, normal)
+      ! Rigid sides: lever arms from the body node to the contact point.
+      c%lever(:, k) = 0.0_wp
+      if (c%cdm(k) == bm_rigid) then
+        rcd = point - q(1:2, b1)
+        c%lever(1, k) = cross(rcd, tang)
+        c%lever(2, k) = cross(rcd, normal)
+      end if
+      if (c%anm(k) == bm_rigid) then
+        ran = point - q(1:2, b2)
+        c%lever(3, k) = cross(ran, tang)
+        c%lever(4, k) = cross(ran, normal)
+      end if
+      if (c%with_mesh) then
+        c%mnode(:, k) = mnode
+        c%mwt(:, k) = mwt
+      end if
       c%status(k) = st_noctc
       c%status_begin(k) = st_noctc
       c%r(:, k) = 0.0_wp
     end subroutine add
   end subroutine detect_fine
+
+  !> Outward normal of a mesh edge walked from a to b (the body on its right).
+  pure function edge_normal(a, b) result(n)
+    real(wp), intent(in) :: a(2), b(2)
+    real(wp) :: n(2), d(2)
+    d = b - a
+    n = [-d(2), d(1)] / max(norm2(d), tiny(1.0_wp))
+  end function edge_normal
+
+  !> Outward direction at vertex j of a counter-clockwise polygon (bisector of
+  !> its two edges' outward normals).
+  pure function vertex_normal(v, j) result(n)
+    real(wp), intent(in) :: v(:, :)
+    integer, intent(in) :: j
+    real(wp) :: n(2)
+    integer :: jp, jn
+    jp = merge(size(v, 2), j - 1, j == 1)
+    jn = merge(1, j + 1, j == size(v, 2))
+    ! Counter-clockwise: the outward normal of edge a->b is (d2, -d1).
+    n = -edge_normal(v(:, jp), v(:, j)) - edge_normal(v(:, j), v(:, jn))
+    n = n / max(norm2(n), tiny(1.0_wp))
+  end function vertex_normal
 
   !> Length carried by each point of a polygon pair: half the distance between
   !> the two points of a face-to-face pair, else reff pi/18 (as LMGC90).

@@ -17,7 +17,7 @@ module fracas_datbox_text
   private
   public :: text_line_t, text_file_t, load_text, line_error, &
             field, is_blank, keyword_of, is_data, get_real, get_int, get_word, &
-            parse_real, parse_int, lower, upper, itoa, rtoa, cols, get_steps, check_line_end
+            parse_real, parse_int, lower, upper, itoa, rtoa, cols, get_steps, check_line_end, edit_distance
 
   !> One data line: its text (trailing blanks removed) and where it was read.
   type :: text_line_t
@@ -218,7 +218,9 @@ contains
 
   !> A value read from columns c1..c2 must end there: a non-blank in column c2
   !> followed by a non-blank means the value runs on past its field (LMGC90
-  !> reads fixed columns: '1.0000000E-010' one column too far reads 0.1).
+  !> reads fixed columns: '1.0000000E-010' one column too far reads 0.1). A sign
+  !> in column c2+1 starts the next value: LMGC90 writes negative numbers of
+  !> adjacent fixed-width fields without a blank between them (GPV.OUT).
   subroutine check_spill(ln, c1, c2, what)
     type(text_line_t), intent(in) :: ln
     integer, intent(in) :: c1, c2
@@ -226,6 +228,7 @@ contains
     integer :: a, b
     if (c2 >= len(ln%text)) return
     if (ln%text(c2:c2) == ' ' .or. ln%text(c2 + 1:c2 + 1) == ' ') return
+    if (ln%text(c2 + 1:c2 + 1) == '-' .or. ln%text(c2 + 1:c2 + 1) == '+') return
     a = c2
     do while (a > 1)
       if (ln%text(a - 1:a - 1) == ' ') exit
@@ -432,4 +435,18 @@ contains
 
 
 
+  !> Levenshtein distance (for "did you mean" suggestions).
+  pure integer function edit_distance(a, b) result(d)
+    character(len=*), intent(in) :: a, b
+    integer :: prev(0:len(b)), cur(0:len(b)), i, j
+    prev = [(j, j=0, len(b))]
+    do i = 1, len(a)
+      cur(0) = i
+      do j = 1, len(b)
+        cur(j) = min(prev(j) + 1, cur(j - 1) + 1, prev(j - 1) + merge(0, 1, a(i:i) == b(j:j)))
+      end do
+      prev = cur
+    end do
+    d = prev(len(b))
+  end function edit_distance
 end module fracas_datbox_text

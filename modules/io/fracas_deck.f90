@@ -8,7 +8,7 @@ module fracas_deck
   private
   public :: source_t, tactor_input_t, body_input_t, material_input_t, law_input_t, &
             see_rule_input_t, driven_dof_input_t, dof_record_t, contact_record_t, &
-            run_control_t, deck_t, element_input_t, model_input_t, gpv_record_t
+            run_control_t, deck_t, element_input_t, model_input_t, gpv_record_t, postpro_input_t
 
   !> Where a record was read: file name as given to the reader and line number.
   type :: source_t
@@ -40,7 +40,8 @@ module fracas_deck
     integer, allocatable :: nodes(:)     !< node numbers within the body
     character(len=5) :: model = ''       !< MODELS.DAT nickname
     character(len=5) :: behav = ''       !< BULK_BEHAV.DAT material nickname
-    type(source_t) :: src
+    type(source_t) :: src                !< the element line
+    type(source_t) :: model_src          !< its 'model ... behav' line
   end type element_input_t
 
   !> One $bdyty block of BODIES.DAT: a rigid body (RBDY2) or a meshed body (MAILx).
@@ -137,7 +138,8 @@ module fracas_deck
   !> the lines LMGC90 writes (small strain: stress (xx, yy, xy, zz), strain
   !> (xx, yy, 2 xy, zz); J2 adds a line of internal values).
   type :: gpv_record_t
-    integer :: body = 0, element = 0
+    integer :: body = 0, element = 0     !< MAILx body number, element rank in the body
+    character(len=5) :: kind = ''        !< element geometry as written ('T3xxx', 'Q4xxx', ...)
     real(wp), allocatable :: values(:, :)   !< (values per Gauss point, Gauss points)
     type(source_t) :: src
   end type gpv_record_t
@@ -179,14 +181,40 @@ module fracas_deck
     integer :: nlgs_seed = 1
     integer :: output_dof_every = 0      !< DOF.OUT.n / Vloc_Rloc.OUT.n every n steps (0: last step only)
     integer :: output_vtk_every = 0      !< DISPLAY/*.vtu every n steps (0: none)
-    integer :: output_hdf5_every = 10    !< snapshot in fracas.h5 every n steps (0: none)
+    character(len=8) :: output_vtk_disks = 'points'      !< 'points' (with a radius) | 'polygons'
+    character(len=6) :: output_vtk_precision = 'single'  !< reals of the .vtu: 'single' | 'double'
+    integer :: output_hdf5_every = -1    !< snapshot in fracas.h5 every n steps (0: none; -1: about 100 a run)
+    character(len=4) :: nlgs_unconverged = 'warn'  !< a step at the sweep limit: 'warn' | 'fail' (exit 3 at the end) | 'stop'
     integer :: progress_every = 0        !< progress line every n steps (0: about 20 lines a run)
     ! Meshed bodies (see doc/input_reference.md)
     character(len=6) :: plane = 'strain'      !< 2D hypothesis of meshed bodies: 'strain' | 'stress'
     real(wp) :: newton_tolerance = 1.0e-6_wp  !< relative residual of the Newton loop of nonlinear bodies
     integer :: newton_max_iterations = 20
     character(len=7) :: linear_solver = 'auto'  !< 'auto', 'dense', 'cholmod'
+    !> Velocity a driven dof has at the start of a step: its imposed value then
+    !> ('imposed', what LMGC90's RBDY2 does, see doc/solver.md), or the previous
+    !> end-of-step velocity, DOF.INI's at the first step ('initial').
+    character(len=7) :: driven_start = 'imposed'
+    !> Also make contacts of pairs whose predicted gap (gap + h min(0, u_n), free
+    !> velocities) is within the alert distance, not only their gap (doc/solver.md).
+    logical :: detection_approach = .true.
+    !> NLGS convergence measured as LMGC90 measures it, by a check pass after each
+    !> block of sweeps that evaluates without applying (yes), or by the changes of
+    !> the block's last sweep (no) (doc/solver.md).
+    logical :: nlgs_check_pass = .true.
   end type run_control_t
+
+  !> One command of POSTPRO.DAT (LMGC90's post-processing deck): its name as
+  !> LMGC90 spells it, its STEP, and the parameter lines after it (kept as
+  !> text: each command reads its own; see fracas_read_postpro).
+  type :: postpro_input_t
+    character(len=30) :: name = ''
+    integer :: every = 1                     !< STEP n: every n steps
+    character(len=80), allocatable :: params(:)
+    integer, allocatable :: param_lines(:)   !< line of each parameter in POSTPRO.DAT
+    integer, allocatable :: bodies(:)        !< BODY TRACKING, TORQUE EVOLUTION: RBDY2 numbers
+    type(source_t) :: src
+  end type postpro_input_t
 
   !> Everything read from one case directory.
   type :: deck_t
@@ -205,6 +233,10 @@ module fracas_deck
     real(wp) :: vloc_time = 0.0_wp
     type(contact_record_t), allocatable :: vloc_ini(:)
     type(gpv_record_t), allocatable :: gpv_ini(:)    !< GPV.INI (empty when absent or '$steps 0' only)
+    type(postpro_input_t), allocatable :: postpro(:) !< POSTPRO.DAT commands (empty when absent)
     type(run_control_t) :: run
+    !> What the run control was made of: the file read ('' when none) and the --set settings.
+    character(len=:), allocatable :: command_file
+    character(len=256), allocatable :: settings(:)
   end type deck_t
 end module fracas_deck

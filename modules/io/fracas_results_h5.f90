@@ -7,9 +7,15 @@
 !>   each step:      call results_append_step(r, values)      (values in names' order)
 !>   each snapshot:  call results_write_snapshot(r, step, time, X, V, inter, ...)
 !>   at the end:     call results_close(r)                    (sets complete = 1)
+!>   more data:      call results_group(r, 'mesh', g) ... fracas_h5 calls ... h5_close_group(g)
+!>                   call results_last_snapshot(r, g) (the newest snapshot's group)
 !>
 !> The file is written in place; its root attribute complete stays 0 until
 !> results_close, so a crashed or running job's file is recognisable.
+!> Series rows are kept in memory and written in blocks; the file is flushed
+!> (rows and snapshots made readable on disk) at most every flush_interval
+!> seconds of wall time, when a row or a snapshot is added, and at the end: a
+!> killed run's file holds everything up to its last flush.
 module fracas_results_h5
   use fracas_kinds, only: wp, ik, i8
   use fracas_strings, only: itoa
@@ -23,13 +29,17 @@ module fracas_results_h5
   private
   public :: results_h5_t, results_open, results_write_bodies, results_write_help, &
             results_write_snapshot, results_append_step, results_flush, results_close, &
-            results_layout_version
+            results_layout_version, results_group, results_last_snapshot
 
   !> Bumped when the layout changes incompatibly; stored as root attribute layout_version.
   integer(ik), parameter :: results_layout_version = 1
 
-  !> Seconds of wall time between automatic flushes in results_append_step.
-  real(wp), parameter :: flush_interval = 10.0_wp
+  !> Seconds of wall time between automatic flushes (results_append_step,
+  !> results_write_snapshot): a flush costs milliseconds, a step may cost
+  !> microseconds.
+  real(wp), parameter :: flush_interval = 2.0_wp
+  !> Series rows kept in memory before they are written as one block.
+  integer, parameter :: row_block = 1024
 
   type :: results_h5_t
     character(len=:), allocatable :: path
@@ -38,6 +48,8 @@ module fracas_results_h5
     type(h5_series_t) :: snap_step, snap_time     !< /snapshot_index/{step,time}
     integer :: nsnap = 0                          !< snapshots written
     integer :: nrows = 0                          !< rows appended to /series
+    real(wp), allocatable :: rows(:, :)           !< (ncols, row_block) rows not yet written
+    integer :: nbuf = 0                           !< rows in rows(:, 1:nbuf)
     integer(i8) :: last_flush = 0                 !< system_clock count
     logical :: is_open = .false.
   end type results_h5_t
@@ -98,7 +110,8 @@ contains
     end do
     call h5_create_group(r%fid, 'series', g)
     call h5_write_attr(g, 'columns', cols)
-    allocate (r%cols(size(series_names)))
+    allocate (r%cols(size(series_names)), r%rows(size(series_names), row_block))
+    r%nbuf = 0
     do k = 1, size(series_names)
       call h5_create_series(g, trim(series_names(k)), r%cols(k))
     end do
@@ -165,25 +178,62 @@ contains
   end subroutine results_write_help
 
   !> Append one row to /series: values(k) to column k (results_open's order).
-  !> Flushes the file when more than flush_interval seconds passed since the last flush.
+  !> Rows are written in blocks of row_block; the file is flushed when more than
+  !> flush_interval seconds passed since the last flush.
   subroutine results_append_step(r, values)
     type(results_h5_t), intent(inout) :: r
     real(wp), intent(in) :: values(:)
-    integer :: k
-    integer(i8) :: now, rate
     call require_open(r, 'results_append_step')
     if (size(values) /= size(r%cols)) &
       call fatal('results_append_step: '//itoa(size(values))//' values for '// &
                  itoa(size(r%cols))//' series columns')
-    do k = 1, size(r%cols)
-      call h5_append(r%cols(k), values(k))
-    end do
+    r%nbuf = r%nbuf + 1
+    r%rows(:, r%nbuf) = values
     r%nrows = r%nrows + 1
+    if (r%nbuf == row_block) call write_rows(r)
+    call flush_if_due(r)
+  end subroutine results_append_step
+
+  !> Write the rows held in memory to the /series columns.
+  subroutine write_rows(r)
+    type(results_h5_t), intent(inout) :: r
+    integer :: k
+    if (r%nbuf == 0) return
+    do k = 1, size(r%cols)
+      call h5_append(r%cols(k), r%rows(k, 1:r%nbuf))
+    end do
+    r%nbuf = 0
+  end subroutine write_rows
+
+  !> results_flush when flush_interval seconds have passed since the last one.
+  subroutine flush_if_due(r)
+    type(results_h5_t), intent(inout) :: r
+    integer(i8) :: now, rate
     call system_clock(now, rate)
     if (rate > 0) then
       if (real(now - r%last_flush, wp) > flush_interval*real(rate, wp)) call results_flush(r)
     end if
-  end subroutine results_append_step
+  end subroutine flush_if_due
+
+  !> Group NAME under the root (created if missing), for data beyond the
+  !> standard layout (e.g. /run, /contactors, /mesh); close it with h5_close_group.
+  subroutine results_group(r, name, g)
+    type(results_h5_t), intent(inout) :: r
+    character(len=*), intent(in) :: name
+    integer(hid_t), intent(out) :: g
+    call require_open(r, 'results_group')
+    call group_here(r%fid, name, g)
+  end subroutine results_group
+
+  !> The group of the newest snapshot (/snapshots/NNNNNN), to add datasets to
+  !> it (e.g. the state of meshed bodies); close it with h5_close_group.
+  subroutine results_last_snapshot(r, g)
+    type(results_h5_t), intent(inout) :: r
+    integer(hid_t), intent(out) :: g
+    call require_open(r, 'results_last_snapshot')
+    if (r%nsnap == 0) call fatal('results_last_snapshot: no snapshot written yet')
+    call h5_open_group(r%fid, 'snapshots/'//snapshot_name(r%nsnap), g)
+  end subroutine results_last_snapshot
 
   !> One snapshot /snapshots/NNNNNN (1, 2, ... zero-padded to 6 digits): body
   !> states X, V (ndof, nb) and the contacts (nc of them). normal, point,
@@ -259,33 +309,39 @@ contains
     call h5_close_group(gs)
     call h5_append(r%snap_step, step)
     call h5_append(r%snap_time, time)
-    call results_flush(r)
+    call flush_if_due(r)
   end subroutine results_write_snapshot
 
   !> Write everything buffered to disk (the file stays open, complete stays 0).
   subroutine results_flush(r)
     type(results_h5_t), intent(inout) :: r
     if (.not. r%is_open) return
+    call write_rows(r)
     call h5_flush(r%fid)
     call system_clock(r%last_flush)
   end subroutine results_flush
 
-  !> Set complete = 1 (unless complete is .false.: a run stopped on an error),
-  !> flush and close. Does nothing if the file is not open.
-  subroutine results_close(r, complete)
+  !> Set complete = 1 (or 0 with complete=.false.: a run stopped before its
+  !> end; end_reason then says why), flush and close. Does nothing if the file
+  !> is not open.
+  subroutine results_close(r, complete, end_reason)
     type(results_h5_t), intent(inout) :: r
     logical, intent(in), optional :: complete
+    character(len=*), intent(in), optional :: end_reason
     integer :: k
     logical :: done
+    if (.not. r%is_open) return
     done = .true.
     if (present(complete)) done = complete
-    if (.not. r%is_open) return
+    call write_rows(r)
+    if (present(end_reason)) call h5_write_attr(r%fid, 'end_reason', end_reason)
     if (allocated(r%cols)) then
       do k = 1, size(r%cols)
         call h5_close_series(r%cols(k))
       end do
       deallocate (r%cols)
     end if
+    if (allocated(r%rows)) deallocate (r%rows)
     call h5_close_series(r%snap_step)
     call h5_close_series(r%snap_time)
     call h5_write_attr(r%fid, 'complete', merge(1_ik, 0_ik, done))

@@ -6,17 +6,19 @@ module fracas_read_command
   use fracas_kinds, only: wp
   use fracas_errors, only: input_error
   use fracas_deck, only: run_control_t
-  use fracas_datbox_text, only: text_file_t, load_text, parse_real, parse_int, lower, itoa, rtoa
+  use fracas_datbox_text, only: text_file_t, load_text, parse_real, parse_int, lower, itoa, rtoa, edit_distance
   implicit none
   private
   public :: read_command, apply_command_setting, check_run_control, command_keywords
 
-  integer, parameter :: n_keys = 16
+  integer, parameter :: n_keys = 26
   character(len=21), parameter :: keys(n_keys) = [character(len=21) :: &
     'time_step', 'number_of_steps', 'final_time', 'theta', 'detection_frequency', &
     'nlgs_check', 'nlgs_tolerance', 'nlgs_relaxation', 'nlgs_sweeps_per_check', &
     'nlgs_max_checks', 'nlgs_order', 'nlgs_seed', 'output_dof_every', 'output_vtk_every', &
-    'output_hdf5_every', 'progress_every']
+    'output_hdf5_every', 'progress_every', 'plane', 'newton_tolerance', 'newton_max_iterations', &
+    'linear_solver', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision', 'driven_start', &
+    'detection_approach', 'nlgs_check_pass']
   integer, parameter :: k_time_step = 1, k_number_of_steps = 2, k_final_time = 3
   !> Largest NLGS sweep budget of a step (sweeps per check x checks).
   real(wp), parameter :: max_sweeps_per_step = 1.0e8_wp
@@ -178,7 +180,7 @@ contains
     integer, intent(in) :: key
     character(len=:), allocatable :: s
     select case (trim(keys(key)))
-    case ('time_step', 'final_time')
+    case ('time_step', 'final_time', 'newton_tolerance')
       s = 'a real > 0'
     case ('nlgs_tolerance')
       s = 'a real >= 2.2e-16 (a smaller tolerance cannot be met in double precision)'
@@ -186,7 +188,8 @@ contains
       s = 'a real in [0.5, 1]'
     case ('nlgs_relaxation')
       s = 'a real in (0, 2)'
-    case ('number_of_steps', 'detection_frequency', 'nlgs_sweeps_per_check', 'nlgs_max_checks')
+    case ('number_of_steps', 'detection_frequency', 'nlgs_sweeps_per_check', 'nlgs_max_checks', &
+          'newton_max_iterations')
       s = 'an integer >= 1'
     case ('nlgs_seed')
       s = 'an integer'
@@ -194,6 +197,20 @@ contains
       s = 'one of Quad, Maxm, QM/16'
     case ('nlgs_order')
       s = 'one of stored, reversed, shuffled, colored'
+    case ('plane')
+      s = 'one of strain, stress'
+    case ('linear_solver')
+      s = 'one of auto, dense, cholmod'
+    case ('driven_start')
+      s = 'one of imposed, initial'
+    case ('detection_approach', 'nlgs_check_pass')
+      s = 'one of yes, no'
+    case ('nlgs_unconverged')
+      s = 'one of warn, fail, stop'
+    case ('output_vtk_disks')
+      s = 'one of points, polygons'
+    case ('output_vtk_precision')
+      s = 'one of single, double'
     case default
       s = 'an integer >= 0'
     end select
@@ -257,6 +274,66 @@ contains
       run%output_hdf5_every = int_min(0)
     case ('progress_every')
       run%progress_every = int_min(0)
+    case ('plane')
+      select case (lv)
+      case ('strain', 'stress')
+        run%plane = lv
+      case default
+        call bad()
+      end select
+    case ('newton_tolerance')
+      run%newton_tolerance = real_in(0.0_wp, huge(1.0_wp), .false.)
+    case ('newton_max_iterations')
+      run%newton_max_iterations = int_min(1)
+    case ('linear_solver')
+      select case (lv)
+      case ('auto', 'dense', 'cholmod')
+        run%linear_solver = lv
+      case default
+        call bad()
+      end select
+    case ('driven_start')
+      select case (lv)
+      case ('imposed', 'initial')
+        run%driven_start = lv
+      case default
+        call bad()
+      end select
+    case ('detection_approach')
+      select case (lv)
+      case ('yes', 'no')
+        run%detection_approach = lv == 'yes'
+      case default
+        call bad()
+      end select
+    case ('nlgs_check_pass')
+      select case (lv)
+      case ('yes', 'no')
+        run%nlgs_check_pass = lv == 'yes'
+      case default
+        call bad()
+      end select
+    case ('nlgs_unconverged')
+      select case (lv)
+      case ('warn', 'fail', 'stop')
+        run%nlgs_unconverged = lv
+      case default
+        call bad()
+      end select
+    case ('output_vtk_disks')
+      select case (lv)
+      case ('points', 'polygons')
+        run%output_vtk_disks = lv
+      case default
+        call bad()
+      end select
+    case ('output_vtk_precision')
+      select case (lv)
+      case ('single', 'double')
+        run%output_vtk_precision = lv
+      case default
+        call bad()
+      end select
     end select
 
   contains
@@ -314,18 +391,4 @@ contains
     end if
   end function suggestion
 
-  !> Levenshtein distance.
-  pure integer function edit_distance(a, b) result(d)
-    character(len=*), intent(in) :: a, b
-    integer :: prev(0:len(b)), cur(0:len(b)), i, j
-    prev = [(j, j=0, len(b))]
-    do i = 1, len(a)
-      cur(0) = i
-      do j = 1, len(b)
-        cur(j) = min(prev(j) + 1, cur(j - 1) + 1, prev(j - 1) + merge(0, 1, a(i:i) == b(j:j)))
-      end do
-      prev = cur
-    end do
-    d = prev(len(b))
-  end function edit_distance
 end module fracas_read_command

@@ -1,10 +1,13 @@
 !> DRV_DOF.DAT reader: driven velocities ('vlocy') and forces ('force') per
 !> body and dof, either as CT, AMP, OMEGA, PHI, RAMPI, RAMP (columns 15-28,
 !> 30-43, 45-58, 60-73, 75-88, 90-103) or as 'evolution FILE', a two-column
-!> (time, value) file in the DATBOX folder.
+!> (time, value) file in the DATBOX folder. A rigid body (RBDY2) has one node
+!> and 3 dofs; a meshed body (MAILx, after '$model' MECAx) names its node
+!> ('$nodty' NO2xx k) before each '$dofty' block, 2 dofs per node.
 module fracas_read_drv_dof
   use fracas_kinds, only: wp
-  use fracas_deck, only: driven_dof_input_t
+  use fracas_deck, only: driven_dof_input_t, body_input_t
+  use fracas_read_bodies, only: body_lookup_t, body_lookup, find_body, no_such_body
   use fracas_errors, only: input_error
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, check_line_end, &
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, rtoa, &
@@ -20,17 +23,21 @@ module fracas_read_drv_dof
 contains
 
   !> Read PATH (DRV_DOF.DAT); evolution files are looked up in DATBOX_DIR.
-  !> Body numbers must be in 1..NBODIES (no check if NBODIES < 0).
-  subroutine read_drv_dof(path, datbox_dir, nbodies, driven)
+  !> With BODIES, body numbers (within their model) and MAILx node numbers
+  !> must exist.
+  subroutine read_drv_dof(path, datbox_dir, driven, bodies)
     character(len=*), intent(in) :: path, datbox_dir
-    integer, intent(in) :: nbodies
     type(driven_dof_input_t), allocatable, intent(out) :: driven(:)
+    type(body_input_t), intent(in), optional :: bodies(:)
     type(text_file_t) :: tf
-    integer :: i, n, body, k
+    integer :: i, n, body, node, k, ib, nnod
+    type(body_lookup_t) :: lookup
     character(len=5) :: kw
-    character(len=:), allocatable :: model
+    character(len=5) :: model
+    character(len=:), allocatable :: word
 
     call load_text(path, tf)
+    if (present(bodies)) lookup = body_lookup(bodies)
     ! Every data line that is not a body or node line is one driven dof.
     n = 0
     do i = 1, tf%n
@@ -45,60 +52,113 @@ contains
     allocate (driven(n))
     n = 0
     body = 0
+    node = 0
+    ib = 0
+    model = ''
     i = 1
     do while (i <= tf%n)
       kw = keyword_of(tf%lines(i))
       select case (kw)
       case ('bdyty')
-        if (.not. is_data(tf, i + 1)) call line_error(tf%lines(i), 1, "'$bdyty' must be followed by a body line (' RBDY2  number')")
+        if (.not. is_data(tf, i + 1)) call line_error(tf%lines(i), 1, "'$bdyty' must be followed by a body line " &
+                                                      //"(' RBDY2  number' or ' MAILx  number')")
         associate (ln => tf%lines(i + 1))
           model = get_word(ln, 2, 6, 'body model')
-          if (model /= 'RBDY2') call line_error(ln, 2, "unknown body model '"//model//"' (supported: RBDY2)")
+          if (model /= 'RBDY2' .and. model /= 'MAILx') &
+            call line_error(ln, 2, "unknown body model '"//trim(model)//"' (supported: RBDY2, MAILx)")
           body = get_int(ln, 9, 15, 'body number')
-          if (nbodies >= 0 .and. (body < 1 .or. body > nbodies)) &
-            call line_error(ln, 9, 'body '//itoa(body)//' does not exist (BODIES.DAT has '//itoa(nbodies)//' bodies)')
+          ib = 0
+          if (present(bodies)) then
+            ib = find_body(lookup, model, body)
+            if (ib == 0) call line_error(ln, 9, no_such_body(bodies, model, body))
+          end if
         end associate
+        node = 0
+        i = i + 2
+      case ('model')
+        if (model /= 'MAILx') call line_error(tf%lines(i), 1, "'$model' belongs to a MAILx body (after its body line)")
+        if (.not. is_data(tf, i + 1)) call line_error(tf%lines(i), 1, "'$model' must be followed by ' MECAx'")
+        word = get_word(tf%lines(i + 1), 2, 6, 'physics (MECAx)')
+        if (word /= 'MECAx') call line_error(tf%lines(i + 1), 2, "physics '"//word//"' is not supported " &
+                                             //'(Fracas drives MECAx nodes only)')
         i = i + 2
       case ('nodty')
         if (body == 0) call line_error(tf%lines(i), 1, "'$nodty' before any '$bdyty'")
-        if (is_data(tf, i + 1)) then
-          if (get_word(tf%lines(i + 1), 2, 6, 'node type') /= 'NO3xx') &
-            call line_error(tf%lines(i + 1), 2, "unknown node type '"//trim(field(tf%lines(i + 1), 2, 6))// &
-                            "' for RBDY2 (supported: NO3xx)")
+        if (model == 'MAILx') then
+          if (.not. is_data(tf, i + 1)) call line_error(tf%lines(i), 1, "'$nodty' must be followed by a node " &
+                                                        //"line (' NO2xx  number')")
+          associate (ln => tf%lines(i + 1))
+            word = get_word(ln, 2, 6, 'node type')
+            if (word /= 'NO2xx') call line_error(ln, 2, "unknown node type '"//word//"' for MAILx (supported: NO2xx)")
+            node = get_int(ln, 7, 13, 'node number')
+            if (ib > 0) then
+              nnod = size(bodies(ib)%node_coor, 2)
+              if (node < 1 .or. node > nnod) call line_error(ln, 7, 'node '//itoa(node)//' does not exist (MAILx body ' &
+                                                             //itoa(body)//' has '//itoa(nnod)//' nodes)')
+            else if (node < 1) then
+              call line_error(ln, 7, 'node number must be >= 1, found '//itoa(node))
+            end if
+          end associate
+          i = i + 2
+        else
+          if (is_data(tf, i + 1)) then
+            if (get_word(tf%lines(i + 1), 2, 6, 'node type') /= 'NO3xx') &
+              call line_error(tf%lines(i + 1), 2, "unknown node type '"//trim(field(tf%lines(i + 1), 2, 6))// &
+                              "' for RBDY2 (supported: NO3xx)")
+            i = i + 1
+          end if
           i = i + 1
         end if
-        i = i + 1
       case ('dofty')
         if (body == 0) call line_error(tf%lines(i), 1, "'$dofty' before any '$bdyty'")
+        if (model == 'MAILx' .and. node == 0) &
+          call line_error(tf%lines(i), 1, "'$dofty' of a MAILx body needs the node it drives: a '$nodty' " &
+                          //'line and its NO2xx line before it')
         i = i + 1
         do while (is_data(tf, i))
           n = n + 1
-          call read_dof_line(tf%lines(i), body, datbox_dir, driven(n))
+          call read_dof_line(tf%lines(i), model, body, node, datbox_dir, driven(n))
           do k = 1, n - 1
-            if (driven(k)%body == body .and. driven(k)%dof == driven(n)%dof .and. driven(k)%kind == driven(n)%kind) &
-              call line_error(tf%lines(i), 9, trim(driven(n)%kind)//' of dof '//itoa(driven(n)%dof)//' of body ' &
-                              //itoa(body)//' is already given at line '//itoa(driven(k)%src%line))
+            if (driven(k)%model == model .and. driven(k)%body == body .and. driven(k)%node == node .and. &
+                driven(k)%dof == driven(n)%dof .and. driven(k)%kind == driven(n)%kind) &
+              call line_error(tf%lines(i), 9, trim(driven(n)%kind)//' of dof '//itoa(driven(n)%dof)//of_what()// &
+                              ' is already given at line '//itoa(driven(k)%src%line))
           end do
           i = i + 1
         end do
       case ('$$$$$')
         body = 0
+        node = 0
+        model = ''
         i = i + 1
       case default
         if (tf%lines(i)%text(1:1) == '$') then
           call line_error(tf%lines(i), 1, "unknown keyword '"//trim(field(tf%lines(i), 1, 6))// &
-                          "' (expected $bdyty, $nodty, $dofty or $$$$$$)")
+                          "' (expected $bdyty, $model, $nodty, $dofty or $$$$$$)")
         else
           call line_error(tf%lines(i), 1, "unexpected line (driven dof lines follow '$dofty'): '"// &
                           trim(field(tf%lines(i), 1, 40))//"'")
         end if
       end select
     end do
+
+  contains
+
+    !> " of body 3" (rigid) or " of node 7 of MAILx body 2".
+    function of_what() result(s)
+      character(len=:), allocatable :: s
+      if (model == 'MAILx') then
+        s = ' of node '//itoa(node)//' of MAILx body '//itoa(body)
+      else
+        s = ' of body '//itoa(body)
+      end if
+    end function of_what
   end subroutine read_drv_dof
 
-  subroutine read_dof_line(ln, body, datbox_dir, d)
+  subroutine read_dof_line(ln, model, body, node, datbox_dir, d)
     type(text_line_t), intent(in) :: ln
-    integer, intent(in) :: body
+    character(len=*), intent(in) :: model
+    integer, intent(in) :: body, node
     character(len=*), intent(in) :: datbox_dir
     type(driven_dof_input_t), intent(out) :: d
     real(wp) :: v(6)
@@ -106,13 +166,20 @@ contains
     character(len=:), allocatable :: fname
 
     d%src = ln%src
+    d%model = model
     d%body = body
+    d%node = node
     d%kind = get_word(ln, 2, 6, "driven dof kind ('vlocy' or 'force')")
     if (d%kind /= 'vlocy' .and. d%kind /= 'force') &
       call line_error(ln, 2, "unknown driven dof kind '"//trim(d%kind)//"' (expected vlocy or force)")
     d%dof = get_int(ln, 9, 13, 'dof index')
-    if (d%dof < 1 .or. d%dof > 3) call line_error(ln, 9, 'dof index must be 1, 2 or 3 for RBDY2 (x, y, rotation), found ' &
-                                                  //itoa(d%dof))
+    if (model == 'MAILx') then
+      if (d%dof < 1 .or. d%dof > 2) call line_error(ln, 9, 'dof index must be 1 or 2 for a MAILx node (x, y), found ' &
+                                                    //itoa(d%dof))
+    else
+      if (d%dof < 1 .or. d%dof > 3) call line_error(ln, 9, 'dof index must be 1, 2 or 3 for RBDY2 (x, y, rotation), ' &
+                                                    //'found '//itoa(d%dof))
+    end if
     if (adjustl(field(ln, 15, 23)) == 'evolution') then
       d%evolution = .true.
       fname = get_word(ln, 25, max(64, len(ln%text)), 'evolution file name')

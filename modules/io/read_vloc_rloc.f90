@@ -8,8 +8,9 @@
 module fracas_read_vloc_rloc
   use fracas_kinds, only: wp
   use fracas_ids, only: inter_id, inter_names, n_inter, status_id, status_names, n_status, &
-                        i_plplx, i_pljcx, i_dkplx
+                        i_plplx, i_pljcx, i_dkplx, i_clalp, i_dkalp, i_plalp
   use fracas_deck, only: contact_record_t, body_input_t, law_input_t
+  use fracas_read_bodies, only: body_lookup_t, body_lookup, find_body, no_such_body
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, is_blank, check_line_end, &
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, get_steps
   implicit none
@@ -18,7 +19,9 @@ module fracas_read_vloc_rloc
 
   !> Start columns of the fields of an id line (0: field absent). Words and
   !> integers are 5 wide except iadj (w_iadj). cdver/anseg columns hold the
-  !> vertex / segment numbers, preceded by the labels 'CDVER' / 'ANSEG'.
+  !> vertex / segment numbers, preceded by the labels 'CDVER' / 'ANSEG' when
+  !> cdver_label / anseg_label > 0 (the ALpxx segment of CLALp, DKALp and
+  !> PLALp has no label).
   type :: vloc_layout_t
     integer :: cdbdy = 2, icdbdy = 9, cdtac = 16, icdtac = 23
     integer :: cdver_label = 0, cdver = 0
@@ -54,7 +57,20 @@ contains
       lay = vloc_layout_t(cdver_label=65, cdver=72, status=93, iadj=98, w_iadj=6, width=103, &
                           header=' cdbdy  numbr  cdtac  numbr  behav  anbdy  numbr  antac  numbr  vertx  numbr' &
                           //'                sttus iadj ', header_len=103)
-    case default
+    case (i_clalp)       ! antagonist segment (polyline of a mesh)
+      lay = vloc_layout_t(anseg=65, status=72, iadj=79, width=83, &
+                          header=' cdbdy  numbr  cdtac  numbr  behav  anbdy  numbr  antac  numbr  segmt  sttus   iadj', &
+                          header_len=83)
+    case (i_dkalp)       ! antagonist segment, status and iadj shifted as in PLJCx
+      lay = vloc_layout_t(anseg=65, status=79, iadj=84, w_iadj=6, width=89, &
+                          header=' cdbdy  numbr  cdtac  numbr  behav  anbdy  numbr  antac  numbr' &
+                          //'                sttus iadj ', header_len=89)
+    case (i_plalp)       ! candidate vertex and antagonist segment
+      lay = vloc_layout_t(cdver_label=30, cdver=37, behav=44, anbdy=51, ianbdy=58, antac=65, iantac=72, &
+                          anseg=79, status=93, iadj=98, w_iadj=6, width=103, &
+                          header=' cdbdy  numbr  cdtac  numbr  vertx  numbr  behav  anbdy  numbr  antac  numbr' &
+                          //'                sttus iadj ', header_len=103)
+    case default         ! DKDKx, DKJCx, DKKDx, CLJCx
       lay = vloc_layout_t()
       if (inter == 'DKKDx') lay%rls_label = 'rls ='
     end select
@@ -72,10 +88,12 @@ contains
     type(law_input_t), intent(in), optional :: laws(:)
     integer, intent(out), optional :: steps_line
     type(text_file_t) :: tf
+    type(body_lookup_t) :: lookup
     integer :: i, n
     character(len=5) :: kw
 
     call load_text(path, tf)
+    if (present(bodies)) lookup = body_lookup(bodies)
     step = 0
     time = 0.0_wp
     if (present(steps_line)) steps_line = 0
@@ -95,7 +113,7 @@ contains
         i = i + 1
       case ('icdan')
         n = n + 1
-        call read_record(tf, i, records(n), bodies, laws)
+        call read_record(tf, i, records(n), lookup, bodies, laws)
       case default
         if (tf%lines(i)%text(1:1) == '$') then
           call line_error(tf%lines(i), 1, "unknown keyword '"//trim(field(tf%lines(i), 1, 6))// &
@@ -108,10 +126,11 @@ contains
   end subroutine read_vloc_rloc_file
 
   !> One record from its '$icdan' line (tf%lines(i)); i ends at the next record.
-  subroutine read_record(tf, i, r, bodies, laws)
+  subroutine read_record(tf, i, r, lookup, bodies, laws)
     type(text_file_t), intent(in) :: tf
     integer, intent(inout) :: i
     type(contact_record_t), intent(out) :: r
+    type(body_lookup_t), intent(in) :: lookup
     type(body_input_t), intent(in), optional :: bodies(:)
     type(law_input_t), intent(in), optional :: laws(:)
     type(vloc_layout_t) :: lay
@@ -149,7 +168,7 @@ contains
       if (status_id(r%status) == 0) call line_error(ln, lay%status, "unknown contact status '"//trim(r%status)// &
                                                     "' (known: "//name_list(status_names, n_status)//')')
       r%iadj = get_int(ln, lay%iadj, lay%iadj + lay%w_iadj - 1, 'iadj')
-      if (present(bodies)) call check_bodies(ln, r, bodies)
+      if (present(bodies)) call check_bodies(ln, r, bodies, lookup)
       if (present(laws)) call check_law(ln, r, laws)
     end associate
     ! rlt/H rln/H, vlt vln, gapTT.
@@ -223,47 +242,61 @@ contains
   end function name_list
 
   !> Bodies, contactor ranks and types, vertex/segment numbers exist.
-  subroutine check_bodies(ln, r, bodies)
+  subroutine check_bodies(ln, r, bodies, lookup)
     type(text_line_t), intent(in) :: ln
     type(contact_record_t), intent(in) :: r
     type(body_input_t), intent(in) :: bodies(:)
+    type(body_lookup_t), intent(in) :: lookup
     type(vloc_layout_t) :: lay
-    integer :: nv
+    integer :: nv, icd, ian
     lay = vloc_layout(r%inter)
-    call check_side(r%cdbdy, r%icdbdy, r%cdtac, r%icdtac, lay%cdbdy, lay%icdbdy, lay%cdtac, lay%icdtac, 'candidate')
-    call check_side(r%anbdy, r%ianbdy, r%antac, r%iantac, lay%anbdy, lay%ianbdy, lay%antac, lay%iantac, 'antagonist')
+    icd = check_side(r%cdbdy, r%icdbdy, r%cdtac, r%icdtac, lay%cdbdy, lay%icdbdy, lay%cdtac, lay%icdtac, 'candidate')
+    ian = check_side(r%anbdy, r%ianbdy, r%antac, r%iantac, lay%anbdy, lay%ianbdy, lay%antac, lay%iantac, 'antagonist')
     if (lay%cdver > 0) then
-      ! PLPLx/PLJCx: a vertex of the candidate polygon; DKPLx: of the antagonist.
+      ! PLPLx/PLJCx/PLALp: a vertex of the candidate polygon; DKPLx: of the antagonist.
       if (r%inter == 'DKPLx') then
-        nv = nvert(r%ianbdy, r%iantac)
+        nv = nvert(ian, r%iantac)
       else
-        nv = nvert(r%icdbdy, r%icdtac)
+        nv = nvert(icd, r%icdtac)
       end if
       if (r%cdver < 0 .or. r%cdver > nv) call line_error(ln, lay%cdver, 'vertex number '//itoa(r%cdver)// &
                                                          ' out of range 0..'//itoa(nv))
     end if
     if (lay%anseg > 0) then
-      nv = nvert(r%ianbdy, r%iantac)
-      if (r%anseg < 0 .or. r%anseg > nv) call line_error(ln, lay%anseg, 'segment number '//itoa(r%anseg)// &
-                                                         ' out of range 0..'//itoa(nv))
+      if (r%antac == 'ALpxx') then
+        ! A segment of the antagonist polyline: 1..(nodes - 1).
+        nv = size(bodies(ian)%tactors(r%iantac)%nodes) - 1
+        if (r%anseg < 1 .or. r%anseg > nv) call line_error(ln, lay%anseg, 'segment number '//itoa(r%anseg)// &
+                                                           ' out of range 1..'//itoa(nv)//' (the ALpxx has ' &
+                                                           //itoa(nv)//' segments)')
+      else
+        nv = nvert(ian, r%iantac)
+        if (r%anseg < 0 .or. r%anseg > nv) call line_error(ln, lay%anseg, 'segment number '//itoa(r%anseg)// &
+                                                           ' out of range 0..'//itoa(nv))
+      end if
     end if
 
   contains
 
-    subroutine check_side(model, ib, tac, it, c_model, c_ib, c_tac, c_it, side)
+    !> The index in BODIES of one side's body, after checking it and its contactor.
+    integer function check_side(model, ib, tac, it, c_model, c_ib, c_tac, c_it, side) result(k)
       character(len=*), intent(in) :: model, tac, side
       integer, intent(in) :: ib, it, c_model, c_ib, c_tac, c_it
-      if (model /= 'RBDY2') call line_error(ln, c_model, side//" body model '"//trim(model)// &
-                                            "' is not supported (supported: RBDY2)")
-      if (ib < 1 .or. ib > size(bodies)) call line_error(ln, c_ib, side//' body '//itoa(ib)// &
-                                                         ' does not exist (BODIES.DAT has '//itoa(size(bodies))//' bodies)')
-      if (it < 1 .or. it > size(bodies(ib)%tactors)) &
-        call line_error(ln, c_it, side//' contactor '//itoa(it)//' does not exist (body '//itoa(ib)//' has ' &
-                        //itoa(size(bodies(ib)%tactors))//' contactors)')
-      if (bodies(ib)%tactors(it)%kind /= tac) &
-        call line_error(ln, c_tac, side//' contactor '//itoa(it)//' of body '//itoa(ib)//' is a ' &
-                        //trim(bodies(ib)%tactors(it)%kind)//', not a '//trim(tac))
-    end subroutine check_side
+      character(len=:), allocatable :: name
+      if (model /= 'RBDY2' .and. model /= 'MAILx') call line_error(ln, c_model, side//" body model '"// &
+                                                                   trim(model)//"' is not supported (supported: " &
+                                                                   //'RBDY2, MAILx)')
+      k = find_body(lookup, model, ib)
+      if (k == 0) call line_error(ln, c_ib, side//' '//no_such_body(bodies, model, ib))
+      name = 'body '//itoa(ib)
+      if (.not. all(bodies%model == 'RBDY2')) name = trim(model)//' '//name
+      if (it < 1 .or. it > size(bodies(k)%tactors)) &
+        call line_error(ln, c_it, side//' contactor '//itoa(it)//' does not exist ('//name//' has ' &
+                        //itoa(size(bodies(k)%tactors))//' contactors)')
+      if (bodies(k)%tactors(it)%kind /= tac) &
+        call line_error(ln, c_tac, side//' contactor '//itoa(it)//' of '//name//' is a ' &
+                        //trim(bodies(k)%tactors(it)%kind)//', not a '//trim(tac))
+    end function check_side
 
     integer function nvert(ib, it)
       integer, intent(in) :: ib, it

@@ -1,16 +1,16 @@
-!> OUTBOX text writers in LMGC90's layout: DOF.OUT.n and Vloc_Rloc.OUT.n
-!> (values in D14.7, e.g. 0.1234567D+01). A file is written to PATH.part and
+!> OUTBOX text writers in LMGC90's layout: DOF.OUT.n, Vloc_Rloc.OUT.n and
+!> GPV.OUT.n (values in D14.7, e.g. 0.1234567D+01). A file is written to PATH.part and
 !> renamed to PATH once complete, so an interrupted run never leaves a
 !> complete-looking file.
 module fracas_write_outbox
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal
   use fracas_files, only: atomic_rename
-  use fracas_deck, only: dof_record_t, contact_record_t
+  use fracas_deck, only: dof_record_t, contact_record_t, gpv_record_t
   use fracas_read_vloc_rloc, only: vloc_layout_t, vloc_layout, internals_per_line
   implicit none
   private
-  public :: write_dof_file, write_vloc_rloc_file
+  public :: write_dof_file, write_vloc_rloc_file, write_gpv_file
 
   character(len=*), parameter :: rule = '!-----------------------------------------------------------------------'
   !> Names of the 2D cohesive internals (L, ut, un, beta, TPSini) in the comment
@@ -19,16 +19,22 @@ module fracas_write_outbox
   integer, parameter :: comment_len = 284
   character(len=*), parameter :: fmt_steps = '(a6,i9,14x,a5,d14.7)'
   character(len=*), parameter :: fmt_3 = '(29x,3(a5,d14.7,:,2x))'
+  !> Values of the stress and strain lines of a Gauss point in GPV files
+  !> (xx, yy, xy, zz); further values (internal variables) go on a third line.
+  integer, parameter :: gpv_line_values = 4
 
 contains
 
-  !> DOF.OUT.n: header then one block per record (body number, X(1..3), V(1..3)).
+  !> DOF.OUT.n: header, the rigid bodies (body number, X(1..3), V(1..3)), then
+  !> the meshed bodies (per node X(1..2), V(1..2)), each model in the order of
+  !> RECORDS. As LMGC90, the rigid part always ends with a rule line, the
+  !> meshed part only when there are meshed bodies, and a last rule closes the file.
   subroutine write_dof_file(path, step, time, records)
     character(len=*), intent(in) :: path
     integer, intent(in) :: step
     real(wp), intent(in) :: time
     type(dof_record_t), intent(in) :: records(:)
-    integer :: u, k
+    integer :: u, k, j
 
     u = open_part(path)
     write (u, '(a)') '     '
@@ -39,6 +45,7 @@ contains
     write (u, '(a)') rule
     do k = 1, size(records)
       associate (r => records(k))
+        if (r%model /= 'RBDY2') cycle
         write (u, '(a)') '$bdyty'
         write (u, '(1x,a5,i9)') r%model, r%body
         write (u, '(a)') '$nodty'
@@ -49,9 +56,73 @@ contains
       end associate
     end do
     write (u, '(a)') rule
+    if (any(records%model == 'MAILx')) then
+      do k = 1, size(records)
+        associate (r => records(k))
+          if (r%model /= 'MAILx') cycle
+          write (u, '(a)') '$bdyty'
+          write (u, '(1x,a5,i7)') r%model, r%body
+          write (u, '(a)') '$model'
+          write (u, '(a)') ' MECAx'
+          write (u, '(a)') '$nodty'
+          do j = 1, size(r%nodes)
+            write (u, '(1x,a5,2x,i5,16x,2(a5,d14.7,:,2x))') 'NO2xx', r%nodes(j), 'X(1)=', r%node_x(1, j), &
+              'X(2)=', r%node_x(2, j)
+            write (u, fmt_3) 'V(1)=', r%node_v(1, j), 'V(2)=', r%node_v(2, j)
+          end do
+          write (u, '(a)') '$$$$$$'
+          write (u, '(a)') '      '
+        end associate
+      end do
+      write (u, '(a)') rule
+    end if
     write (u, '(a)') rule
     call close_part(u, path)
   end subroutine write_dof_file
+
+  !> GPV.OUT.n: header, then per meshed body ('$bdyty', body number) its
+  !> elements ('$blmty', geometry and rank, '$model' MECAx) with, per Gauss
+  !> point, the stress line, the strain line and, if there are more values,
+  !> one line of internal values. Records of one body follow each other.
+  subroutine write_gpv_file(path, step, time, records)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: step
+    real(wp), intent(in) :: time
+    type(gpv_record_t), intent(in) :: records(:)
+    integer :: u, k, g, nv, body
+
+    u = open_part(path)
+    write (u, '(a)') '     '
+    write (u, '(a)') '! Gauss Point Values'
+    write (u, '(a)') '      '
+    write (u, fmt_steps) '$steps', step, 'time=', time
+    write (u, '(a)') ' '
+    write (u, '(a)') rule
+    body = 0
+    do k = 1, size(records)
+      associate (r => records(k))
+        if (r%body /= body) then
+          if (body /= 0) write (u, '(a)') '$$$$$$'
+          write (u, '(a)') '$bdyty'
+          write (u, '(1x,a5,i7)') 'MAILx', r%body
+          body = r%body
+        end if
+        write (u, '(a)') '$blmty'
+        write (u, '(1x,a5,i7)') r%kind, r%element
+        write (u, '(a)') '$model'
+        write (u, '(a)') ' MECAx'
+        nv = size(r%values, 1)
+        do g = 1, size(r%values, 2)
+          write (u, '(*(d14.7))') r%values(1:min(nv, gpv_line_values), g)
+          if (nv > gpv_line_values) write (u, '(*(d14.7))') r%values(gpv_line_values + 1:min(nv, 2*gpv_line_values), g)
+          if (nv > 2*gpv_line_values) write (u, '(*(d14.7))') r%values(2*gpv_line_values + 1:nv, g)
+        end do
+      end associate
+    end do
+    if (body /= 0) write (u, '(a)') '$$$$$$'
+    write (u, '(a)') rule
+    call close_part(u, path)
+  end subroutine write_gpv_file
 
   !> Vloc_Rloc.OUT.n: header then one $icdan block per record, with the id
   !> line layout of its interaction type, n/coo lines if has_geometry and the
@@ -119,7 +190,7 @@ contains
     call put(r%antac, lay%antac)
     call put_int(r%iantac, lay%iantac, 5)
     if (lay%anseg > 0) then
-      call put('ANSEG', lay%anseg_label)
+      if (lay%anseg_label > 0) call put('ANSEG', lay%anseg_label)
       call put_int(r%anseg, lay%anseg, 5)
     end if
     call put(r%status, lay%status)
@@ -141,13 +212,17 @@ contains
     end subroutine put_int
   end function id_line
 
-  !> Names of n internal values in 15-character columns, padded to comment_len.
+  !> Names of n internal values in 15-character columns, padded to comment_len:
+  !> the cohesive internals for 5, the contact length alone for 1 (LMGC90's
+  !> one internal of a contact on a mesh with a law without internals).
   function internal_comment(n) result(s)
     integer, intent(in) :: n
     character(len=comment_len) :: s
     integer :: k
     if (n == 5) then
       s = czm_names
+    else if (n == 1) then
+      s = czm_names(1:10)
     else
       s = ''
       do k = 1, min(n, 18)   ! 18 names of 15 characters fit in comment_len

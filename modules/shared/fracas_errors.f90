@@ -6,7 +6,15 @@ module fracas_errors
   use fracas_strings, only: itoa
   implicit none
   private
-  public :: fatal, input_error, warn, set_cleanup, cleanup_proc
+  public :: fatal, input_error, warn, set_cleanup, cleanup_proc, stop_run, itoa
+  public :: exit_error, exit_unconverged
+
+  !> Exit statuses of the programs (documented in fracas --help and doc/):
+  !> 0 success; exit_error: an error was reported (bad input, a failure during
+  !> the run); exit_unconverged: the run ended, or stopped, because NLGS steps
+  !> did not converge and the run control makes that fatal. (2 is left to the
+  !> Fortran run-time library, which uses it for its own errors.)
+  integer, parameter :: exit_error = 1, exit_unconverged = 3
 
   abstract interface
     subroutine cleanup_proc()
@@ -45,6 +53,16 @@ contains
     call run_cleanup()
     error stop 1, quiet=.true.
   end subroutine input_error
+
+  !> End the program with exit status STATUS after MESSAGE (on standard
+  !> error, as an error) and the registered clean-up.
+  subroutine stop_run(message, status)
+    character(len=*), intent(in) :: message
+    integer, intent(in) :: status
+    write (error_unit, '(a)') 'fracas: error: '//trim(message)
+    call run_cleanup()
+    error stop status, quiet=.true.
+  end subroutine stop_run
 
   !> A warning on standard error; the run goes on.
   subroutine warn(message)

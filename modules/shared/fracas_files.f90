@@ -1,12 +1,17 @@
 !> Small file-system operations through the C library (no shell commands):
 !> atomic rename (the last step of every "write PATH.part, then rename" output),
-!> existence tests, directory creation and file removal.
+!> existence tests, directory creation and listing, file removal.
 module fracas_files
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_ptr, c_associated
+  use, intrinsic :: iso_c_binding, only: c_int, c_long, c_char, c_null_char, c_ptr, c_associated
   use fracas_errors, only: fatal
   implicit none
   private
-  public :: atomic_rename, file_exists, dir_exists, make_dir, remove_file
+  public :: atomic_rename, file_exists, dir_exists, make_dir, remove_file, list_dir, name_t
+
+  !> One name of a directory listing.
+  type :: name_t
+    character(len=:), allocatable :: s
+  end type name_t
 
   interface
     integer(c_int) function c_rename(from, to) bind(C, name='rename')
@@ -35,6 +40,14 @@ module fracas_files
       import :: c_int, c_ptr
       type(c_ptr), value :: dir
     end function c_closedir
+
+    !> modules/shared/fracas_dirlist.c
+    integer(c_long) function c_list_dir(path, buf, buflen) bind(C, name='fracas_list_dir')
+      import :: c_long, c_char
+      character(kind=c_char), intent(in) :: path(*)
+      character(kind=c_char), intent(inout) :: buf(*)
+      integer(c_long), value :: buflen
+    end function c_list_dir
   end interface
 
 contains
@@ -128,6 +141,38 @@ contains
       call fatal('cannot remove '//trim(path))
     end if
   end subroutine remove_file
+
+  !> The entries of directory PATH (files and directories, without '.' and
+  !> '..'), in no particular order; none if PATH is not a readable directory.
+  subroutine list_dir(path, names)
+    character(len=*), intent(in) :: path
+    type(name_t), allocatable, intent(out) :: names(:)
+    character(kind=c_char), allocatable :: buf(:)
+    integer(c_long) :: need
+    integer :: i, j, n
+    allocate (buf(4096))
+    need = c_list_dir(cstr(path), buf, size(buf, kind=c_long))
+    if (need > size(buf, kind=c_long)) then
+      ! Entries may appear between the two calls: ask for some room to spare.
+      deallocate (buf)
+      allocate (buf(need + 4096))
+      need = min(c_list_dir(cstr(path), buf, size(buf, kind=c_long)), size(buf, kind=c_long))
+    end if
+    n = 0
+    do i = 1, int(need)
+      if (buf(i) == c_null_char) n = n + 1
+    end do
+    allocate (names(n))
+    n = 0
+    j = 1
+    do i = 1, int(need)
+      if (buf(i) /= c_null_char) cycle
+      n = n + 1
+      allocate (character(len=i - j) :: names(n)%s)
+      names(n)%s = transfer(buf(j:i - 1), names(n)%s)
+      j = i + 1
+    end do
+  end subroutine list_dir
 
   !> Trimmed, NUL-terminated copy of a Fortran string for the C library.
   pure function cstr(s) result(c)

@@ -5,7 +5,8 @@ module fracas_ids
   private
   public :: n_status, status_names, st_noctc, st_stick, st_slifw, st_slibw, st_noact, &
             st_cnctc, st_cstck, st_cslfw, st_cslbw, status_id, &
-            n_inter, inter_names, i_dkdkx, i_dkjcx, i_dkkdx, i_dkplx, i_plplx, i_pljcx, inter_id
+            n_inter, inter_names, i_dkdkx, i_dkjcx, i_dkkdx, i_dkplx, i_plplx, i_pljcx, inter_id, &
+            i_clalp, i_cljcx, i_dkalp, i_plalp, bm_rigid, bm_mesh
 
   ! Statuses: 'C' variants are cohesive contacts (the glue is not yet broken).
   integer, parameter :: st_noctc = 1, st_stick = 2, st_slifw = 3, st_slibw = 4, st_noact = 5, &
@@ -14,10 +15,14 @@ module fracas_ids
   character(len=5), parameter :: status_names(n_status) = &
     [character(len=5) :: 'noctc', 'stick', 'slifw', 'slibw', 'noact', 'Cnctc', 'Cstck', 'Cslfw', 'Cslbw']
 
-  integer, parameter :: i_dkdkx = 1, i_dkjcx = 2, i_dkkdx = 3, i_dkplx = 4, i_plplx = 5, i_pljcx = 6
-  integer, parameter :: n_inter = 6
+  integer, parameter :: i_dkdkx = 1, i_dkjcx = 2, i_dkkdx = 3, i_dkplx = 4, i_plplx = 5, i_pljcx = 6, &
+                        i_clalp = 7, i_cljcx = 8, i_dkalp = 9, i_plalp = 10
+  integer, parameter :: n_inter = 10
   character(len=5), parameter :: inter_names(n_inter) = &
-    [character(len=5) :: 'DKDKx', 'DKJCx', 'DKKDx', 'DKPLx', 'PLPLx', 'PLJCx']
+    [character(len=5) :: 'DKDKx', 'DKJCx', 'DKKDx', 'DKPLx', 'PLPLx', 'PLJCx', 'CLALp', 'CLJCx', 'DKALp', 'PLALp']
+
+  !> Body models: rigid 2D bodies (RBDY2) and meshed bodies (MAILx).
+  integer, parameter :: bm_rigid = 1, bm_mesh = 2
 
 contains
 

@@ -1,20 +1,32 @@
 !> The one place for small string helpers used in messages and file names.
 module fracas_strings
-  use fracas_kinds, only: wp
+  use fracas_kinds, only: wp, i8
   implicit none
   private
   public :: itoa, rtoa, lower, upper
 
+  !> An integer (default or 64-bit) without blanks: 42 -> '42'.
+  interface itoa
+    module procedure itoa_default, itoa_i8
+  end interface itoa
+
 contains
 
-  !> An integer without blanks: 42 -> '42'.
-  pure function itoa(i) result(s)
+  pure function itoa_default(i) result(s)
     integer, intent(in) :: i
     character(len=:), allocatable :: s
     character(len=16) :: buf
     write (buf, '(i0)') i
     s = trim(buf)
-  end function itoa
+  end function itoa_default
+
+  pure function itoa_i8(i) result(s)
+    integer(i8), intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, '(i0)') i
+    s = trim(buf)
+  end function itoa_i8
 
   !> Short text form of a real for messages (es12.5, blanks removed; a
   !> three-digit exponent keeps its E).

@@ -5,7 +5,7 @@ module fracas_local_solver
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw
   implicit none
   private
-  public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d_packed
+  public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d_packed, gs_sweep_mesh
   public :: pk_size
 
   !> Doubles per contact record of gs_sweep_2d_packed.
@@ -101,13 +101,14 @@ contains
   !>     r = r_c + a + K u~ (coh(12,k) = A, W', a, K);
   !>   bv(6, *) one record per body: v (3) and the inverse mass (3);
   !>   r(2, n), status(n) in sweep order.
-  !> Statuses are written, and the norm sums accumulated, only in check sweeps
-  !> (the last sweep of a solve is always one): sums(1) sum du^2, (2) sum du^2
-  !> |rbar|^2, (3) sum rbar.du, (4) sum W r.r, (5) sum |W r|^2, (6) contacts with
-  !> rbar /= 0; maxes(1) max du^2, (2) max du^2 |rbar|^2 (fracas_lmgc_norms).
-  !> Sweeps without check and without cohesive contacts run a lean loop
-  !> (sweep_plain, the local solver inlined).
-  subroutine gs_sweep_2d_packed(n, cb, cr, icoh, any_coh, coh, r, status, bv, relax, check, sums, maxes)
+  !> With check, statuses are written and the norm sums accumulated: sums(1) sum
+  !> du^2, (2) sum du^2 |rbar|^2, (3) sum rbar.du, (4) sum W r.r, (5) sum |W r|^2,
+  !> (6) contacts with rbar /= 0; maxes(1) max du^2, (2) max du^2 |rbar|^2
+  !> (fracas_lmgc_norms); with evaluate_only too, nothing is applied: LMGC90's
+  !> check pass, every contact's local solution computed from the current state and
+  !> compared with its current reaction. Sweeps without check and without cohesive
+  !> contacts run a lean loop (sweep_plain, the local solver inlined).
+  subroutine gs_sweep_2d_packed(n, cb, cr, icoh, any_coh, coh, r, status, bv, relax, check, sums, maxes, evaluate_only)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
     real(wp), intent(in) :: cr(pk_size, n)
@@ -118,8 +119,12 @@ contains
     real(wp), intent(in) :: relax
     logical, intent(in) :: check
     real(wp), intent(out) :: sums(6), maxes(2)
+    logical, intent(in), optional :: evaluate_only
+    logical :: evaluate
+    evaluate = .false.
+    if (present(evaluate_only)) evaluate = evaluate_only
     if (check .or. any_coh) then
-      call sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes)
+      call sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes, evaluate)
     else
       sums = 0.0_wp
       maxes = 0.0_wp
@@ -183,9 +188,9 @@ contains
     end do
   end subroutine sweep_plain
 
-  !> Any sweep: cohesive contacts, and with check the statuses and LMGC90's norm
-  !> sums (see gs_sweep_2d_packed).
-  subroutine sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes)
+  !> Any sweep with cohesive contacts, or a check pass (statuses and LMGC90's
+  !> norm sums, nothing applied).
+  subroutine sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes, evaluate_only)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
     real(wp), intent(in) :: cr(pk_size, n)
@@ -193,63 +198,22 @@ contains
     real(wp), intent(inout) :: r(2, n), bv(6, *)
     integer, intent(inout) :: status(n)
     real(wp), intent(in) :: relax
-    logical, intent(in) :: check
+    logical, intent(in) :: check, evaluate_only
     real(wp), intent(out) :: sums(6), maxes(2)
-    integer :: k, a, o, j, st
-    real(wp) :: n1, n2, wtt, wtn, wnt, wnn, dvx, dvy, ut, un, rt0, rn0, rt, rn, uft, ufn, drt, drn, px, py
-    real(wp) :: dut, dun, du2, rbt, rbn, rb2, xt, xn, rct, rcn
+    integer :: k, a, o
+    real(wp) :: n1, n2, dvx, dvy, ut, un, rt0, rn0, rt, rn, drt, drn, px, py
     sums = 0.0_wp
     maxes = 0.0_wp
     do k = 1, n
       a = cb(1, k); o = cb(2, k)
       n1 = cr(1, k); n2 = cr(2, k)
-      wtt = cr(7, k); wtn = cr(8, k); wnt = cr(9, k); wnn = cr(10, k)
       dvx = bv(1, a) - bv(1, o)
       dvy = bv(2, a) - bv(2, o)
       ut = dvx * n2 - dvy * n1 + bv(3, a) * cr(3, k) - bv(3, o) * cr(5, k)
       un = dvx * n1 + dvy * n2 + bv(3, a) * cr(4, k) - bv(3, o) * cr(6, k)
       rt0 = r(1, k); rn0 = r(2, k)
-      uft = ut - (wtt * rt0 + wtn * rn0) + cr(17, k)
-      ufn = un - (wnt * rt0 + wnn * rn0) + cr(18, k)
-      j = icoh(k)
-      if (j /= 0) then
-        xt = uft + wtt * coh(9, j) + wtn * coh(10, j)
-        xn = ufn + wnt * coh(9, j) + wnn * coh(10, j)
-        uft = coh(1, j) * xt + coh(2, j) * xn
-        ufn = coh(3, j) * xt + coh(4, j) * xn
-        call coulomb_2d_inv(uft, ufn, cr(11:16, k), cr(19, k), rct, rcn, st)
-        xt = uft + coh(5, j) * rct + coh(6, j) * rcn     ! u~ at the end of the step
-        xn = ufn + coh(7, j) * rct + coh(8, j) * rcn
-        rt = rct + coh(9, j) + coh(11, j) * xt
-        rn = rcn + coh(10, j) + coh(12, j) * xn
-      else
-        call coulomb_2d_inv(uft, ufn, cr(11:16, k), cr(19, k), rt, rn, st)
-      end if
-      if (check) then
-        status(k) = st
-        ! du = W (r_old - r_new), rbar = mean reaction (LMGC90's check quantities)
-        dut = wtt * (rt0 - rt) + wtn * (rn0 - rn)
-        dun = wnt * (rt0 - rt) + wnn * (rn0 - rn)
-        rbt = 0.5_wp * (rt0 + rt); rbn = 0.5_wp * (rn0 + rn)
-        if (rbt /= 0.0_wp .or. rbn /= 0.0_wp) then
-          du2 = dut**2 + dun**2
-          rb2 = rbt**2 + rbn**2
-          sums(1) = sums(1) + du2
-          sums(2) = sums(2) + du2 * rb2
-          sums(3) = sums(3) + rbt * dut + rbn * dun
-          sums(4) = sums(4) + 0.5_wp * ((wtt * rt0 + wtn * rn0) * rt0 + (wnt * rt0 + wnn * rn0) * rn0 + &
-                                        (wtt * rt + wtn * rn) * rt + (wnt * rt + wnn * rn) * rn)
-          sums(5) = sums(5) + 0.5_wp * ((wtt * rt0 + wtn * rn0)**2 + (wnt * rt0 + wnn * rn0)**2 + &
-                                        (wtt * rt + wtn * rn)**2 + (wnt * rt + wnn * rn)**2)
-          sums(6) = sums(6) + 1.0_wp
-          maxes(1) = max(maxes(1), du2)
-          maxes(2) = max(maxes(2), du2 * rb2)
-        end if
-      end if
-      if (relax /= 1.0_wp) then
-        rt = relax * rt + (1.0_wp - relax) * rt0
-        rn = relax * rn + (1.0_wp - relax) * rn0
-      end if
+      call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
+      if (evaluate_only) cycle        ! a check pass evaluates, it does not apply
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
@@ -263,6 +227,152 @@ contains
       bv(3, o) = bv(3, o) - bv(6, o) * (drt * cr(5, k) + drn * cr(6, k))
     end do
   end subroutine sweep_general
+
+  !> One contact's update from its current relative velocity (ut, un), whatever
+  !> bodies it joins: free velocity u - W r0 + shift, exact local solution (a
+  !> cohesive contact j > 0 solves for its contact part with W' and adds the
+  !> cohesive impulse, see gs_sweep_2d_packed), with check its status and LMGC90's norm
+  !> sums, then relaxation. cr is the contact's packed record.
+  pure subroutine local_step(ut, un, cr, j, coh, rt0, rn0, relax, check, rt, rn, status, sums, maxes)
+    real(wp), intent(in) :: ut, un, cr(pk_size), rt0, rn0, relax
+    integer, intent(in) :: j
+    real(wp), intent(in) :: coh(:, :)
+    logical, intent(in) :: check
+    real(wp), intent(out) :: rt, rn
+    integer, intent(inout) :: status
+    real(wp), intent(inout) :: sums(6), maxes(2)
+    integer :: st
+    real(wp) :: wtt, wtn, wnt, wnn, uft, ufn, dut, dun, du2, rbt, rbn, rb2, xt, xn, rct, rcn
+    wtt = cr(7); wtn = cr(8); wnt = cr(9); wnn = cr(10)
+    uft = ut - (wtt * rt0 + wtn * rn0) + cr(17)
+    ufn = un - (wnt * rt0 + wnn * rn0) + cr(18)
+    if (j /= 0) then
+      xt = uft + wtt * coh(9, j) + wtn * coh(10, j)
+      xn = ufn + wnt * coh(9, j) + wnn * coh(10, j)
+      uft = coh(1, j) * xt + coh(2, j) * xn
+      ufn = coh(3, j) * xt + coh(4, j) * xn
+      call coulomb_2d_inv(uft, ufn, cr(11:16), cr(19), rct, rcn, st)
+      xt = uft + coh(5, j) * rct + coh(6, j) * rcn     ! u~ at the end of the step
+      xn = ufn + coh(7, j) * rct + coh(8, j) * rcn
+      rt = rct + coh(9, j) + coh(11, j) * xt
+      rn = rcn + coh(10, j) + coh(12, j) * xn
+    else
+      call coulomb_2d_inv(uft, ufn, cr(11:16), cr(19), rt, rn, st)
+    end if
+    if (check) then
+      status = st
+      ! du = W (r_old - r_new), rbar = mean reaction (LMGC90's check quantities)
+      dut = wtt * (rt0 - rt) + wtn * (rn0 - rn)
+      dun = wnt * (rt0 - rt) + wnn * (rn0 - rn)
+      rbt = 0.5_wp * (rt0 + rt); rbn = 0.5_wp * (rn0 + rn)
+      if (rbt /= 0.0_wp .or. rbn /= 0.0_wp) then
+        du2 = dut**2 + dun**2
+        rb2 = rbt**2 + rbn**2
+        sums(1) = sums(1) + du2
+        sums(2) = sums(2) + du2 * rb2
+        sums(3) = sums(3) + rbt * dut + rbn * dun
+        sums(4) = sums(4) + 0.5_wp * ((wtt * rt0 + wtn * rn0) * rt0 + (wnt * rt0 + wnn * rn0) * rn0 + &
+                                      (wtt * rt + wtn * rn) * rt + (wnt * rt + wnn * rn) * rn)
+        sums(5) = sums(5) + 0.5_wp * ((wtt * rt0 + wtn * rn0)**2 + (wnt * rt0 + wnn * rn0)**2 + &
+                                      (wtt * rt + wtn * rn)**2 + (wnt * rt + wnn * rn)**2)
+        sums(6) = sums(6) + 1.0_wp
+        maxes(1) = max(maxes(1), du2)
+        maxes(2) = max(maxes(2), du2 * rb2)
+      end if
+    end if
+    if (relax /= 1.0_wp) then
+      rt = relax * rt + (1.0_wp - relax) * rt0
+      rn = relax * rn + (1.0_wp - relax) * rn0
+    end if
+  end subroutine local_step
+
+  !> One Gauss–Seidel sweep over contacts with a meshed side (sweep order), in
+  !> exchange with the bodies after each contact like the rigid kernel:
+  !>   cr(pk_size, n) packed records as gs_sweep_2d_packed (levers of rigid sides);
+  !>   side(4, n): per side s (cd then an), side(2s-1) = 1 rigid / 2 meshed and
+  !>     side(2s) its place: the body's slot in bv (rigid) or the offset of its
+  !>     G block in gmat (meshed); gm(2, n) and goff: see below;
+  !>   slot(4, n): index in mv of the x velocity of the two nodes of each meshed
+  !>     side; wt(4, n) their weights, with the sign of the side (an: minus);
+  !>   mv: velocities of the bodies' contact dofs; gmat: per meshed side the
+  !>     m x 2 block G = C H^T stored by rows (2, m) (m = gm(s, k) contact dofs
+  !>     of its body, starting in mv at mfirst(s, k)), so an impulse change dr
+  !>     moves mv by G dr.
+  !> Statuses and norm sums as gs_sweep_2d_packed: a check pass applies nothing.
+  subroutine gs_sweep_mesh(n, cr, side, gm, mfirst, slot, wt, icoh, coh, r, status, bv, mv, gmat, relax, check, &
+                           sums, maxes, evaluate_only)
+    integer, intent(in) :: n
+    real(wp), intent(in) :: cr(pk_size, n), wt(4, n), gmat(*)
+    integer, intent(in) :: side(4, n), gm(2, n), mfirst(2, n), slot(4, n), icoh(n)
+    real(wp), intent(in), contiguous :: coh(:, :)
+    real(wp), intent(inout) :: r(2, n), bv(6, *), mv(*)
+    integer, intent(inout) :: status(n)
+    real(wp), intent(in) :: relax
+    logical, intent(in) :: check, evaluate_only
+    real(wp), intent(out) :: sums(6), maxes(2)
+    integer :: k, s, i, a, m, g0, v0
+    real(wp) :: n1, n2, vx, vy, rot, ut, un, rt0, rn0, rt, rn, drt, drn, px, py, sgn
+    sums = 0.0_wp
+    maxes = 0.0_wp
+    do k = 1, n
+      n1 = cr(1, k); n2 = cr(2, k)
+      ! Relative velocity of the contact point: candidate minus antagonist
+      ! (the antagonist's weights carry the minus sign).
+      if (side(1, k) == 2 .and. side(3, k) == 2) then
+        vx = wt(1, k) * mv(slot(1, k)) + wt(2, k) * mv(slot(2, k)) + wt(3, k) * mv(slot(3, k)) + &
+             wt(4, k) * mv(slot(4, k))
+        vy = wt(1, k) * mv(slot(1, k) + 1) + wt(2, k) * mv(slot(2, k) + 1) + wt(3, k) * mv(slot(3, k) + 1) + &
+             wt(4, k) * mv(slot(4, k) + 1)
+        ut = vx * n2 - vy * n1
+        un = vx * n1 + vy * n2
+      else
+        vx = 0.0_wp; vy = 0.0_wp; ut = 0.0_wp; un = 0.0_wp
+        do s = 1, 2
+          if (side(2 * s - 1, k) == 1) then
+            a = side(2 * s, k)
+            sgn = merge(1.0_wp, -1.0_wp, s == 1)
+            vx = vx + sgn * bv(1, a)
+            vy = vy + sgn * bv(2, a)
+            rot = sgn * bv(3, a)
+            ut = ut + rot * cr(2 * s + 1, k)
+            un = un + rot * cr(2 * s + 2, k)
+          else
+            do i = 2 * s - 1, 2 * s
+              vx = vx + wt(i, k) * mv(slot(i, k))
+              vy = vy + wt(i, k) * mv(slot(i, k) + 1)
+            end do
+          end if
+        end do
+        ut = ut + vx * n2 - vy * n1
+        un = un + vx * n1 + vy * n2
+      end if
+      rt0 = r(1, k); rn0 = r(2, k)
+      call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
+      if (evaluate_only) cycle        ! a check pass evaluates, it does not apply
+      r(1, k) = rt; r(2, k) = rn
+      drt = rt - rt0; drn = rn - rn0
+      if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
+      do s = 1, 2
+        if (side(2 * s - 1, k) == 1) then
+          px = drt * n2 + drn * n1
+          py = -drt * n1 + drn * n2
+          a = side(2 * s, k)
+          sgn = merge(1.0_wp, -1.0_wp, s == 1)
+          bv(1, a) = bv(1, a) + sgn * bv(4, a) * px
+          bv(2, a) = bv(2, a) + sgn * bv(5, a) * py
+          bv(3, a) = bv(3, a) + sgn * bv(6, a) * (drt * cr(2 * s + 1, k) + drn * cr(2 * s + 2, k))
+        else
+          ! G stored interleaved: (G_t(i), G_n(i)) for each contact dof i
+          m = gm(s, k)
+          g0 = side(2 * s, k)
+          v0 = mfirst(s, k) - 1
+          do i = 1, m
+            mv(v0 + i) = mv(v0 + i) + gmat(g0 + 2 * i - 1) * drt + gmat(g0 + 2 * i) * drn
+          end do
+        end if
+      end do
+    end do
+  end subroutine gs_sweep_mesh
   ! ====================================================================== 3D
   ! 3D blocks are in FCLib order (n, t1, t2), stored column-major in w(9):
   ! w(1) = Wnn, w(2) = Wt1n, w(3) = Wt2n, w(4) = Wnt1, ..., w(9) = Wt2t2.

@@ -1,17 +1,26 @@
 !> Nonlinear Gauss–Seidel on the contact reactions, "exchange local–global"
 !> mode: after each contact update the two bodies' velocities are updated, so
-!> each contact sees its neighbours' latest reactions. Convergence is measured
-!> with LMGC90's normalised norms (Quad, Maxm, QM/16), computed inside the last
-!> sweep of each block, and after convergence with the FCLib natural map.
+!> each contact sees its neighbours' latest reactions. Contacts between two
+!> rigid bodies run in the packed rigid kernel; contacts with a meshed side in
+!> the mesh kernel, on the velocities of the meshed bodies' contact dofs
+!> (doc/architecture.md); both in one sweep. Convergence is measured as LMGC90
+!> does: after each block of sweeps, a check pass evaluates every contact's
+!> update without applying it, and LMGC90's normalised norms (Quad, Maxm,
+!> QM/16) of those updates decide; after convergence the FCLib natural map is
+!> computed too.
 module fracas_nlgs
   use fracas_kinds, only: wp, i8
-  use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw, st_cnctc, st_cstck, st_cslfw, st_cslbw
+  use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw, st_cnctc, st_cstck, st_cslfw, st_cslbw, &
+                        bm_rigid, bm_mesh
   use fracas_random, only: rng_t, rng_seed, rng_permute
   use fracas_rbdy2, only: rbdy2_t
+  use fracas_mailx, only: mailx_t, mailx_require_compliance, mailx_compliance_columns, &
+                          mailx_contact_dofs, &
+                          mailx_velocity_from_impulses
   use fracas_contacts, only: contacts_t
-  use fracas_contact_laws, only: law_t, law_shift, law_friction, law_czm
-  use fracas_czm, only: czm_t, czm_beta_power, czm_beta_update, czm_stored_energy
-  use fracas_local_solver, only: gs_sweep_2d_packed, pk_size, natural_map_2d, inverse_block
+  use fracas_contact_laws, only: law_t, law_local_problem, law_czm
+  use fracas_czm, only: czm_beta_update, czm_stored_energy
+  use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
   use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
   implicit none
   private
@@ -24,6 +33,7 @@ module fracas_nlgs
     real(wp) :: relax = 1.0_wp
     integer :: sweeps_per_check = 50
     integer :: max_checks = 400
+    logical :: check_pass = .true.    !< LMGC90's check pass (else the change of the last sweep)
     character(len=8) :: order = 'stored'
     integer :: seed = 1
   end type nlgs_settings_t
@@ -61,6 +71,22 @@ module fracas_nlgs
     integer, allocatable :: bslot(:)       !< (nb) slot in bv of each body (0: none)
     integer, allocatable :: blist(:)       !< (nbp) body of each slot
     real(wp), allocatable :: bv(:, :)      !< (6,nbp) velocity and inverse mass
+    ! Contacts with a meshed side (see gs_sweep_mesh): G blocks of the step
+    ! (offset goff(s,k) and dofs gm(s,k) of side s of contact k), the packed
+    ! records in sweep order and the contact-dof velocities mv of the meshed
+    ! bodies (body b's from moff(b)+1, -1 if none).
+    real(wp), allocatable :: gmat(:)
+    integer, allocatable :: goff(:, :), gm(:, :)
+    integer :: ng = 0
+    integer, allocatable :: gidx(:), gside(:, :), ggm(:, :), gfirst(:, :), gslot(:, :), gcoh(:), gst(:)
+    real(wp), allocatable :: gc(:, :), gwt(:, :), gr(:, :)
+    integer, allocatable :: moff(:)
+    real(wp), allocatable :: mv(:)
+    ! The step's active nodes of each meshed body: a dense body's are all its
+    ! nodes, a large body's the nodes its contacts touch (its cached compliance
+    ! may cover more); anodes(abase(b)+1 .. abase(b)+nact(b)), aslot(node) the
+    ! node's place in its body's list (0: none).
+    integer, allocatable :: nact(:), abase(:), anodes(:), aslot(:)
   end type nlgs_t
 
 contains
@@ -72,17 +98,30 @@ contains
     call rng_seed(solver%rng, settings%seed)
   end subroutine nlgs_init
 
-  !> Relative velocity (t, n) at contact k for body velocities v.
-  pure function contact_velocity(c, k, v) result(u)
+  !> Relative velocity (t, n) at contact k for rigid body velocities v and
+  !> mesh node velocities vm.
+  pure function contact_velocity(c, k, v, vm) result(u)
     type(contacts_t), intent(in) :: c
     integer, intent(in) :: k
-    real(wp), intent(in) :: v(:, :)
-    real(wp) :: u(2), dv(2)
+    real(wp), intent(in) :: v(:, :), vm(:, :)
+    real(wp) :: u(2), dv(2), rot_cd(2), rot_an(2)
     integer :: a, b
     a = c%cdb(k); b = c%anb(k)
-    dv = v(1:2, a) - v(1:2, b)
-    u(1) = dv(1) * c%normal(2, k) - dv(2) * c%normal(1, k) + v(3, a) * c%lever(1, k) - v(3, b) * c%lever(3, k)
-    u(2) = dv(1) * c%normal(1, k) + dv(2) * c%normal(2, k) + v(3, a) * c%lever(2, k) - v(3, b) * c%lever(4, k)
+    rot_cd = 0.0_wp; rot_an = 0.0_wp
+    if (c%cdm(k) == bm_rigid) then
+      dv = v(1:2, a)
+      rot_cd = [v(3, a) * c%lever(1, k), v(3, a) * c%lever(2, k)]
+    else
+      dv = c%mwt(1, k) * vm(:, c%mnode(1, k)) + c%mwt(2, k) * vm(:, c%mnode(2, k))
+    end if
+    if (c%anm(k) == bm_rigid) then
+      dv = dv - v(1:2, b)
+      rot_an = [v(3, b) * c%lever(3, k), v(3, b) * c%lever(4, k)]
+    else
+      dv = dv - (c%mwt(3, k) * vm(:, c%mnode(3, k)) + c%mwt(4, k) * vm(:, c%mnode(4, k)))
+    end if
+    u(1) = dv(1) * c%normal(2, k) - dv(2) * c%normal(1, k) + rot_cd(1) - rot_an(1)
+    u(2) = dv(1) * c%normal(1, k) + dv(2) * c%normal(2, k) + rot_cd(2) - rot_an(2)
   end function contact_velocity
 
   !> Component i (1: t, 2: n) of the cohesive impulse a + K u~ of contact k at
@@ -140,89 +179,246 @@ contains
     end do
   end subroutine nlgs_update_cohesive
 
-  !> Per-contact data of the step: Delassus blocks from the inverse masses and
-  !> lever arms, velocities at the beginning of the step, law shifts, friction.
-  subroutine nlgs_prepare(c, b, laws, h)
+  !> Per-contact data of the step: Delassus blocks (rigid sides from the
+  !> inverse masses and lever arms, meshed sides from their bodies' contact
+  !> compliance), velocities at the beginning of the step, and the local
+  !> problem each contact's law poses (shift, friction, cohesion).
+  subroutine nlgs_prepare(solver, c, b, m, laws, h)
+    type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
     type(rbdy2_t), intent(in) :: b
+    type(mailx_t), intent(inout) :: m
     type(law_t), intent(in) :: laws(:)
     real(wp), intent(in) :: h
     integer :: k, a, o
-    real(wp) :: ht(3), hn(3), gt(3), gn(3)
-    logical :: active
+    real(wp) :: ht(3), hn(3), gt(3), gn(3), weff(4), coh(12), internals(5)
+    logical :: active, cohesive, solvable
+    if (c%with_mesh) call mesh_blocks(solver, c, m)
+    internals = 0.0_wp
     do k = 1, c%n
       a = c%cdb(k); o = c%anb(k)
-      ht = [c%normal(2, k), -c%normal(1, k), c%lever(1, k)]
-      hn = [c%normal(1, k), c%normal(2, k), c%lever(2, k)]
-      gt = [c%normal(2, k), -c%normal(1, k), c%lever(3, k)]
-      gn = [c%normal(1, k), c%normal(2, k), c%lever(4, k)]
-      c%w(1, k) = sum(b%inv_mass(:, a) * ht * ht) + sum(b%inv_mass(:, o) * gt * gt)
-      c%w(2, k) = sum(b%inv_mass(:, a) * ht * hn) + sum(b%inv_mass(:, o) * gt * gn)
+      c%w(:, k) = 0.0_wp
+      if (c%cdm(k) == bm_rigid) then
+        ht = [c%normal(2, k), -c%normal(1, k), c%lever(1, k)]
+        hn = [c%normal(1, k), c%normal(2, k), c%lever(2, k)]
+        c%w(1, k) = sum(b%inv_mass(:, a) * ht * ht)
+        c%w(2, k) = sum(b%inv_mass(:, a) * ht * hn)
+        c%w(4, k) = sum(b%inv_mass(:, a) * hn * hn)
+      end if
+      if (c%anm(k) == bm_rigid) then
+        gt = [c%normal(2, k), -c%normal(1, k), c%lever(3, k)]
+        gn = [c%normal(1, k), c%normal(2, k), c%lever(4, k)]
+        c%w(1, k) = c%w(1, k) + sum(b%inv_mass(:, o) * gt * gt)
+        c%w(2, k) = c%w(2, k) + sum(b%inv_mass(:, o) * gt * gn)
+        c%w(4, k) = c%w(4, k) + sum(b%inv_mass(:, o) * gn * gn)
+      end if
       c%w(3, k) = c%w(2, k)
-      c%w(4, k) = sum(b%inv_mass(:, a) * hn * hn) + sum(b%inv_mass(:, o) * gn * gn)
+      if (c%cdm(k) == bm_mesh .or. c%anm(k) == bm_mesh) call add_mesh_block(k)
       ! A nearly rigid tangential direction would make the stick test ill-posed.
       c%w(1, k) = max(c%w(1, k), 1.0e-6_wp * c%w(4, k))
-      c%u_begin(:, k) = contact_velocity(c, k, b%vbegin)
-      call law_shift(laws(c%law(k)), c%gap(k), h, c%u_begin(:, k), c%shift(:, k), active)
-      c%active(k) = active .and. c%w(4, k) > 1.0e-18_wp
-      c%mu(k) = law_friction(laws(c%law(k)), c%status_begin(k))
-      c%cohesive(k) = .false.
-      if (laws(c%law(k))%kind == law_czm) call prepare_cohesive(k, laws(c%law(k))%czm)
+      c%u_begin(:, k) = contact_velocity(c, k, b%vbegin, m%vbegin)
+      if (c%with_cohesion) internals = c%internals(:, k)
+      call law_local_problem(laws(c%law(k)), c%gap(k), h, c%u_begin(:, k), c%status_begin(k), internals, &
+                             c%length(k), c%w(:, k), c%shift(:, k), c%mu(k), active, cohesive, coh, weff, solvable)
+      c%active(k) = active
+      c%cohesive(k) = cohesive
+      if (cohesive) c%coh(:, k) = coh
+      c%wi(:, k) = 0.0_wp
+      if (solvable) c%wi(:, k) = inverse_block(weff(1), weff(2), weff(3), weff(4), c%mu(k))
       if (.not. c%active(k)) then
         c%r(:, k) = 0.0_wp
         c%status(k) = st_noctc   ! as LMGC90 reports a contact the law leaves open
-      else if (c%cohesive(k)) then
-        ! Between bodies that cannot move along the normal (both driven) the
-        ! cohesive impulse still acts; the contact part then stays zero.
-        c%wi(:, k) = 0.0_wp
-        if (c%coh(5, k) * c%coh(8, k) - c%coh(6, k) * c%coh(7, k) > 1.0e-30_wp * max(c%coh(8, k), tiny(1.0_wp))**2 &
-            .and. c%coh(8, k) > 1.0e-18_wp) &
-          c%wi(:, k) = inverse_block(c%coh(5, k), c%coh(6, k), c%coh(7, k), c%coh(8, k), c%mu(k))
-      else
-        c%wi(:, k) = inverse_block(c%w(1, k), c%w(2, k), c%w(3, k), c%w(4, k), c%mu(k))
       end if
     end do
 
   contains
 
-    !> Cohesive contact with beta frozen over the step: friction mu (1-beta)^p and
-    !> the impulse r_coh = a + K u~ (u~ = u + shift), eliminated locally:
-    !> (I - W K) u~ = u~free + W a + W r_c, A = (I - W K)^-1, W' = A W.
-    subroutine prepare_cohesive(k, z)
+    !> W += sum over meshed sides s of H_s G_s' for the meshed sides s' on the
+    !> same body (both, for a contact of a body with itself).
+    subroutine add_mesh_block(k)
       integer, intent(in) :: k
-      type(czm_t), intent(in) :: z
-      real(wp) :: beta, e, kt, kn, m(4), det, amat(4), wp_(4), at
-      beta = c%internals(4, k)
-      c%mu(k) = c%mu(k) * (1.0_wp - beta)**z%friction_power
-      if (beta <= 0.0_wp) return
-      c%cohesive(k) = .true.
-      e = beta**czm_beta_power(z) * c%length(k)
-      kt = -h**2 * e * z%ct
-      kn = -h**2 * e * z%cn
-      at = -h * e * z%ct * c%internals(2, k)     ! tangential jump at the beginning of the step
-      m = [1.0_wp - c%w(1, k) * kt, -c%w(2, k) * kn, -c%w(3, k) * kt, 1.0_wp - c%w(4, k) * kn]
-      det = m(1) * m(4) - m(2) * m(3)
-      amat = [m(4), -m(2), -m(3), m(1)] / det
-      wp_(1) = amat(1) * c%w(1, k) + amat(2) * c%w(3, k)
-      wp_(2) = amat(1) * c%w(2, k) + amat(2) * c%w(4, k)
-      wp_(3) = amat(3) * c%w(1, k) + amat(4) * c%w(3, k)
-      wp_(4) = amat(3) * c%w(2, k) + amat(4) * c%w(4, k)
-      c%coh(1:4, k) = amat
-      c%coh(5:8, k) = wp_
-      c%coh(9:10, k) = [at, 0.0_wp]
-      c%coh(11:12, k) = [kt, kn]
-      ! The tensile cohesive impulse also acts while the gap is open, and
-      ! between bodies whose normal motion is driven.
-      c%active(k) = .true.
-    end subroutine prepare_cohesive
+      integer :: s, s2, i, j, mb, g0, sl
+      real(wp) :: t(2), nrm(2), sgn, ht_g(2), hn_g(2), wgt
+      nrm = c%normal(:, k)
+      t = [nrm(2), -nrm(1)]
+      do s = 1, 2
+        if (side_model(c, k, s) /= bm_mesh) cycle
+        sgn = merge(1.0_wp, -1.0_wp, s == 1)
+        do s2 = 1, 2
+          if (side_model(c, k, s2) /= bm_mesh .or. side_body(c, k, s2) /= side_body(c, k, s)) cycle
+          mb = solver%gm(s2, k)
+          g0 = solver%goff(s2, k)
+          ! H_s applied to the two columns of G_s2 (stored interleaved by rows)
+          ht_g = 0.0_wp; hn_g = 0.0_wp
+          do i = 2 * s - 1, 2 * s
+            wgt = sgn * c%mwt(i, k)
+            sl = 2 * solver%aslot(c%mnode(i, k)) - 1
+            do j = 1, 2
+              ht_g(j) = ht_g(j) + wgt * (t(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
+                                         t(2) * solver%gmat(g0 + 2 * sl + j))
+              hn_g(j) = hn_g(j) + wgt * (nrm(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
+                                         nrm(2) * solver%gmat(g0 + 2 * sl + j))
+            end do
+          end do
+          c%w(1, k) = c%w(1, k) + ht_g(1)
+          c%w(2, k) = c%w(2, k) + ht_g(2)
+          c%w(3, k) = c%w(3, k) + hn_g(1)
+          c%w(4, k) = c%w(4, k) + hn_g(2)
+        end do
+      end do
+    end subroutine add_mesh_block
   end subroutine nlgs_prepare
 
-  !> Solve the step's contact problem. On entry b%v = vfree and c%r holds the
-  !> warm start; on exit b%v = vfree + M^-1 H^T r and c%u the final local velocities.
-  subroutine nlgs_solve(solver, c, b, report)
+  pure integer function side_model(c, k, s)
+    type(contacts_t), intent(in) :: c
+    integer, intent(in) :: k, s
+    side_model = merge(c%cdm(k), c%anm(k), s == 1)
+  end function side_model
+
+  pure integer function side_body(c, k, s)
+    type(contacts_t), intent(in) :: c
+    integer, intent(in) :: k, s
+    side_body = merge(c%cdb(k), c%anb(k), s == 1)
+  end function side_body
+
+  !> G = C H^T of every meshed contact side (the velocity change of its body's
+  !> contact dofs per unit impulse (t, n)), after making sure the bodies'
+  !> compliance covers the contact nodes.
+  subroutine mesh_blocks(solver, c, m)
+    type(nlgs_t), intent(inout) :: solver
+    type(contacts_t), intent(in) :: c
+    type(mailx_t), intent(inout) :: m
+    integer :: k, s, i, j, nnod, total, mb, g0, node, b, na
+    integer, allocatable :: nodes(:)
+    real(wp), allocatable :: cols(:, :)
+    real(wp) :: t(2), nrm(2), sgn, wgt
+    allocate (nodes(4 * c%n))
+    nnod = 0
+    do k = 1, c%n
+      do i = 1, 4
+        if (side_model(c, k, (i + 1) / 2) /= bm_mesh) cycle
+        nnod = nnod + 1
+        nodes(nnod) = c%mnode(i, k)
+      end do
+    end do
+    call mailx_require_compliance(m, nodes(1:nnod))
+    ! Active nodes per body (see nlgs_t), those of the last call cleared first.
+    call clear_active(solver)
+    if (allocated(solver%aslot)) then
+      if (size(solver%aslot) /= m%nnodes) deallocate (solver%aslot, solver%nact, solver%abase)
+    end if
+    if (.not. allocated(solver%aslot)) then
+      allocate (solver%aslot(m%nnodes), solver%nact(m%n), solver%abase(m%n))
+      solver%aslot = 0
+    end if
+    solver%nact = 0
+    do k = 1, nnod
+      b = m%node_body(nodes(k))
+      if (m%dense(b)) then
+        solver%nact(b) = m%node_first(b + 1) - m%node_first(b)
+      else if (solver%aslot(nodes(k)) == 0) then
+        solver%nact(b) = solver%nact(b) + 1
+        solver%aslot(nodes(k)) = -1          ! counted, placed below
+      end if
+    end do
+    na = 0
+    do b = 1, m%n
+      solver%abase(b) = na
+      na = na + solver%nact(b)
+    end do
+    if (allocated(solver%anodes)) then
+      if (size(solver%anodes) < na) deallocate (solver%anodes)
+    end if
+    if (.not. allocated(solver%anodes)) allocate (solver%anodes(max(na, 16)))
+    solver%nact = 0
+    do k = 1, nnod
+      node = nodes(k)
+      b = m%node_body(node)
+      if (solver%aslot(node) > 0) cycle
+      if (m%dense(b)) then
+        if (solver%nact(b) > 0) cycle
+        do j = m%node_first(b), m%node_first(b + 1) - 1
+          solver%nact(b) = solver%nact(b) + 1
+          solver%anodes(solver%abase(b) + solver%nact(b)) = j
+          solver%aslot(j) = solver%nact(b)
+        end do
+      else
+        solver%nact(b) = solver%nact(b) + 1
+        solver%anodes(solver%abase(b) + solver%nact(b)) = node
+        solver%aslot(node) = solver%nact(b)
+      end if
+    end do
+    if (allocated(solver%goff)) then
+      if (size(solver%goff, 2) < c%n) deallocate (solver%goff, solver%gm)
+    end if
+    if (.not. allocated(solver%goff)) allocate (solver%goff(2, max(c%n, 16)), solver%gm(2, max(c%n, 16)))
+    total = 0
+    do k = 1, c%n
+      do s = 1, 2
+        solver%goff(s, k) = 0
+        solver%gm(s, k) = 0
+        if (side_model(c, k, s) /= bm_mesh) cycle
+        solver%goff(s, k) = total
+        solver%gm(s, k) = 2 * solver%nact(side_body(c, k, s))
+        total = total + 2 * solver%gm(s, k)
+      end do
+    end do
+    if (allocated(solver%gmat)) then
+      if (size(solver%gmat) < total) deallocate (solver%gmat)
+    end if
+    if (.not. allocated(solver%gmat)) allocate (solver%gmat(max(total, 16)))
+    do k = 1, c%n
+      nrm = c%normal(:, k)
+      t = [nrm(2), -nrm(1)]
+      do s = 1, 2
+        if (side_model(c, k, s) /= bm_mesh) cycle
+        sgn = merge(1.0_wp, -1.0_wp, s == 1)
+        b = side_body(c, k, s)
+        mb = solver%gm(s, k)
+        g0 = solver%goff(s, k)
+        solver%gmat(g0 + 1:g0 + 2 * mb) = 0.0_wp
+        if (allocated(cols)) then
+          if (size(cols, 1) /= mailx_contact_dofs(m, b)) deallocate (cols)
+        end if
+        if (.not. allocated(cols)) allocate (cols(mailx_contact_dofs(m, b), 2))
+        do i = 2 * s - 1, 2 * s
+          node = c%mnode(i, k)
+          wgt = sgn * c%mwt(i, k)
+          if (wgt == 0.0_wp) cycle
+          call mailx_compliance_columns(m, node, cols)
+          ! rows of the active nodes; (G_t, G_n) interleaved, as the mesh kernel reads them
+          do j = 1, solver%nact(b)
+            associate (r1 => 2 * m%cslot(solver%anodes(solver%abase(b) + j)) - 1, q => g0 + 4 * j - 4)
+              solver%gmat(q + 1) = solver%gmat(q + 1) + wgt * (t(1) * cols(r1, 1) + t(2) * cols(r1, 2))
+              solver%gmat(q + 2) = solver%gmat(q + 2) + wgt * (nrm(1) * cols(r1, 1) + nrm(2) * cols(r1, 2))
+              solver%gmat(q + 3) = solver%gmat(q + 3) + wgt * (t(1) * cols(r1 + 1, 1) + t(2) * cols(r1 + 1, 2))
+              solver%gmat(q + 4) = solver%gmat(q + 4) + wgt * (nrm(1) * cols(r1 + 1, 1) + nrm(2) * cols(r1 + 1, 2))
+            end associate
+          end do
+        end do
+      end do
+    end do
+  end subroutine mesh_blocks
+
+  !> Clear the active-node marks of the step (aslot is kept zero between steps).
+  subroutine clear_active(solver)
+    type(nlgs_t), intent(inout) :: solver
+    integer :: b
+    if (.not. allocated(solver%nact)) return
+    do b = 1, size(solver%nact)
+      solver%aslot(solver%anodes(solver%abase(b) + 1:solver%abase(b) + solver%nact(b))) = 0
+    end do
+  end subroutine clear_active
+
+  !> Solve the step's contact problem. On entry b%v = vfree (rigid), m%vfree
+  !> (meshes), and c%r holds the warm start; on exit the velocities are
+  !> vfree + M^-1 H^T r (rigid) and vfree + A_ff^-1 H^T r (meshes), and c%u the
+  !> final local velocities.
+  subroutine nlgs_solve(solver, c, b, m, report)
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
     type(rbdy2_t), intent(inout) :: b
+    type(mailx_t), intent(inout) :: m
     type(nlgs_report_t), intent(out) :: report
     integer :: k, iblock, isweep, n
     real(wp) :: sums(7), maxes(2), fsum, qsum, vscale
@@ -247,13 +443,15 @@ contains
       solver%bslot = 0
     end if
     do k = 1, n
-      solver%qfree(:, k) = contact_velocity(c, k, b%v) + c%shift(:, k)
-      if (c%active(k)) call inject(k, c%r(1, k), c%r(2, k))
+      solver%qfree(:, k) = contact_velocity(c, k, b%v, m%vfree) + c%shift(:, k)
+      if (c%active(k) .and. c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) call inject(k, c%r(1, k), c%r(2, k))
     end do
     ! Velocity scale of the step: free relative velocities and body speeds.
     vscale = 0.0_wp
     do k = 1, n
-      vscale = vscale + sum(solver%qfree(:, k)**2) + sum(b%vfree(1:2, c%cdb(k))**2) + sum(b%vfree(1:2, c%anb(k))**2)
+      vscale = vscale + sum(solver%qfree(:, k)**2)
+      if (c%cdm(k) == bm_rigid) vscale = vscale + sum(b%vfree(1:2, c%cdb(k))**2)
+      if (c%anm(k) == bm_rigid) vscale = vscale + sum(b%vfree(1:2, c%anb(k))**2)
     end do
     if (n > 0) vscale = sqrt(vscale / n)
     select case (solver%s%order)
@@ -265,6 +463,7 @@ contains
       solver%order(1:n) = [(k, k=1, n)]
     end select
     call pack_bodies()
+    if (c%with_mesh) call pack_meshes()
     if (solver%s%order /= 'shuffled') call pack_contacts()
     report%converged = n == 0
     if (n > 0) then
@@ -274,21 +473,33 @@ contains
           call rng_permute(solver%rng, solver%order(1:n))
           call pack_contacts()
         end if
-        do isweep = 1, solver%s%sweeps_per_check
-          call sweep(isweep == solver%s%sweeps_per_check)
-          report%sweeps = report%sweeps + 1
-        end do
+        if (solver%s%check_pass) then
+          do isweep = 1, solver%s%sweeps_per_check
+            call sweep(.false., .false.)
+            report%sweeps = report%sweeps + 1
+          end do
+          ! LMGC90's check: one more pass that evaluates every contact's update
+          ! from the state the sweeps reached, without applying it.
+          call sweep(.true., .true.)
+        else
+          ! The change of the block's last sweep.
+          do isweep = 1, solver%s%sweeps_per_check
+            call sweep(isweep == solver%s%sweeps_per_check, .false.)
+            report%sweeps = report%sweeps + 1
+          end do
+        end if
         call norms(report)
         if (report%converged .or. diverged) exit blocks   ! NaN/Inf: the caller's state check names it
       end do blocks
       call unpack_contacts()
     end if
     call unpack_bodies()
+    if (c%with_mesh) call mesh_velocities()
     ! Final local velocities, statuses and the natural-map residual.
     fsum = 0.0_wp; qsum = 0.0_wp
     report%nactive = 0
     do k = 1, n
-      c%u(:, k) = contact_velocity(c, k, b%v)
+      c%u(:, k) = contact_velocity(c, k, b%v, m%v)
       if (.not. c%active(k)) cycle
       if (c%r(1, k) == 0.0_wp .and. c%r(2, k) == 0.0_wp) then
         c%status(k) = st_noctc
@@ -330,19 +541,19 @@ contains
     subroutine colour_order()
       integer, parameter :: colour_block = 256, ncol = 64
       integer(i8), allocatable :: used(:)
-      integer :: blk(colour_block), col(colour_block), cnt(0:ncol), k, m, j, cc, nact
+      integer :: blk(colour_block), col(colour_block), cnt(0:ncol), k, mc, j, cc, nact
       allocate (used(b%n))
       used = 0_i8
       nact = 0
-      m = 0
+      mc = 0
       do k = 1, n
-        if (c%active(k)) then
-          m = m + 1
-          blk(m) = k
+        if (c%active(k) .and. c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) then
+          mc = mc + 1
+          blk(mc) = k
         end if
-        if (m == colour_block .or. (k == n .and. m > 0)) then
+        if (mc == colour_block .or. (k == n .and. mc > 0)) then
           cnt = 0
-          do j = 1, m
+          do j = 1, mc
             cc = min(ncol - 1, trailz(not(ior(used(c%cdb(blk(j))), used(c%anb(blk(j)))))))
             col(j) = cc
             cnt(cc + 1) = cnt(cc + 1) + 1
@@ -352,18 +563,18 @@ contains
           do cc = 1, ncol
             cnt(cc) = cnt(cc) + cnt(cc - 1)
           end do
-          do j = 1, m
+          do j = 1, mc
             cnt(col(j)) = cnt(col(j)) + 1
             solver%order(nact + cnt(col(j))) = blk(j)
             used(c%cdb(blk(j))) = 0_i8
             used(c%anb(blk(j))) = 0_i8
           end do
-          nact = nact + m
-          m = 0
+          nact = nact + mc
+          mc = 0
         end if
       end do
       do k = 1, n
-        if (c%active(k)) cycle
+        if (c%active(k) .and. c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) cycle
         nact = nact + 1
         solver%order(nact) = k
       end do
@@ -377,6 +588,7 @@ contains
       do k = 1, n
         if (.not. c%active(k)) cycle
         do j = 1, 2
+          if (side_model(c, k, j) /= bm_rigid) cycle
           ib = merge(c%cdb(k), c%anb(k), j == 1)
           if (solver%bslot(ib) /= 0) cycle
           solver%nbp = solver%nbp + 1
@@ -402,32 +614,70 @@ contains
       solver%nbp = 0
     end subroutine unpack_bodies
 
-    !> Records of the active contacts in the current sweep order.
+    !> Records of the active contacts in the current sweep order: rigid pairs
+    !> for the packed kernel, contacts with a meshed side for the mesh kernel.
     subroutine pack_contacts()
-      integer :: ii, k, j
+      integer :: ii, k, j, jg, sd
       j = 0
+      jg = 0
       do ii = 1, n
         k = solver%order(ii)
         if (.not. c%active(k)) cycle
-        j = j + 1
-        solver%pidx(j) = k
-        solver%pb(1, j) = solver%bslot(c%cdb(k))
-        solver%pb(2, j) = solver%bslot(c%anb(k))
-        solver%pc(1:2, j) = c%normal(:, k)
-        solver%pc(3:6, j) = c%lever(:, k)
-        solver%pc(7:10, j) = c%w(:, k)
-        solver%pc(11:16, j) = c%wi(:, k)
-        solver%pc(17:18, j) = c%shift(:, k)
-        solver%pc(19, j) = c%mu(k)
-        solver%pc(20, j) = 0.0_wp
-        solver%pcoh(j) = 0
-        if (c%cohesive(k)) solver%pcoh(j) = k
-        solver%pr(:, j) = c%r(:, k)
-        solver%pst(j) = c%status(k)
+        if (c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) then
+          j = j + 1
+          solver%pidx(j) = k
+          solver%pb(1, j) = solver%bslot(c%cdb(k))
+          solver%pb(2, j) = solver%bslot(c%anb(k))
+          call record(k, solver%pc(:, j), solver%pcoh(j))
+          solver%pr(:, j) = c%r(:, k)
+          solver%pst(j) = c%status(k)
+        else
+          jg = jg + 1
+          solver%gidx(jg) = k
+          call record(k, solver%gc(:, jg), solver%gcoh(jg))
+          solver%gr(:, jg) = c%r(:, k)
+          solver%gst(jg) = c%status(k)
+          do sd = 1, 2
+            if (side_model(c, k, sd) == bm_rigid) then
+              solver%gside(2 * sd - 1, jg) = 1
+              solver%gside(2 * sd, jg) = solver%bslot(side_body(c, k, sd))
+              solver%gslot(2 * sd - 1:2 * sd, jg) = 0
+              solver%gwt(2 * sd - 1:2 * sd, jg) = 0.0_wp
+              solver%ggm(sd, jg) = 0
+              solver%gfirst(sd, jg) = 0
+            else
+              solver%gside(2 * sd - 1, jg) = 2
+              solver%gside(2 * sd, jg) = solver%goff(sd, k)
+              solver%ggm(sd, jg) = solver%gm(sd, k)
+              solver%gfirst(sd, jg) = solver%moff(side_body(c, k, sd)) + 1
+              solver%gslot(2 * sd - 1, jg) = solver%moff(side_body(c, k, sd)) + &
+                                             2 * solver%aslot(c%mnode(2 * sd - 1, k)) - 1
+              solver%gslot(2 * sd, jg) = solver%moff(side_body(c, k, sd)) + 2 * solver%aslot(c%mnode(2 * sd, k)) - 1
+              solver%gwt(2 * sd - 1:2 * sd, jg) = merge(1.0_wp, -1.0_wp, sd == 1) * c%mwt(2 * sd - 1:2 * sd, k)
+            end if
+          end do
+        end if
       end do
       solver%np = j
+      solver%ng = jg
       solver%any_coh = any(solver%pcoh(1:j) /= 0)
     end subroutine pack_contacts
+
+    !> The packed record of contact k (see gs_sweep_2d_packed) and its column of c%coh.
+    subroutine record(k, rec, icoh)
+      integer, intent(in) :: k
+      real(wp), intent(out) :: rec(pk_size)
+      integer, intent(out) :: icoh
+      rec(1:2) = c%normal(:, k)
+      rec(3:6) = c%lever(:, k)
+      rec(7:10) = c%w(:, k)
+      rec(11:16) = c%wi(:, k)
+      rec(17:18) = c%shift(:, k)
+      rec(19) = c%mu(k)
+      rec(20) = 0.0_wp
+      icoh = 0
+      if (c%cohesive(k)) icoh = k
+    end subroutine record
 
     !> Impulses and statuses back to the contact store.
     subroutine unpack_contacts()
@@ -437,16 +687,127 @@ contains
         c%r(:, k) = solver%pr(:, j)
         c%status(k) = solver%pst(j)
       end do
+      do j = 1, solver%ng
+        k = solver%gidx(j)
+        c%r(:, k) = solver%gr(:, j)
+        c%status(k) = solver%gst(j)
+      end do
     end subroutine unpack_contacts
 
+    !> Contact-dof velocities (from the free velocities) of the meshed bodies
+    !> that active contacts touch, then the warm-start impulses of the contacts
+    !> with a meshed side, on both their sides.
+    subroutine pack_meshes()
+      integer :: k, sd, bm, total, j, i, mb, g0, v0
+      if (allocated(solver%moff)) then
+        if (size(solver%moff) /= m%n) deallocate (solver%moff)
+      end if
+      if (.not. allocated(solver%moff)) allocate (solver%moff(m%n))
+      solver%moff = -1
+      total = 0
+      do k = 1, n
+        if (.not. c%active(k)) cycle
+        do sd = 1, 2
+          if (side_model(c, k, sd) /= bm_mesh) cycle
+          bm = side_body(c, k, sd)
+          if (solver%moff(bm) >= 0) cycle
+          solver%moff(bm) = total
+          total = total + solver%gm(sd, k)
+        end do
+      end do
+      if (allocated(solver%mv)) then
+        if (size(solver%mv) < total) deallocate (solver%mv)
+      end if
+      if (.not. allocated(solver%mv)) allocate (solver%mv(max(total, 16)))
+      do bm = 1, m%n
+        if (solver%moff(bm) < 0) cycle
+        do j = 1, solver%nact(bm)
+          solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, solver%anodes(solver%abase(bm) + j))
+        end do
+      end do
+      k = n
+      if (allocated(solver%gidx)) then
+        if (size(solver%gidx) < n) deallocate (solver%gidx, solver%gside, solver%ggm, solver%gfirst, solver%gslot, &
+                                               solver%gcoh, solver%gst, solver%gc, solver%gwt, solver%gr)
+      end if
+      if (.not. allocated(solver%gidx)) then
+        k = max(n, 16)
+        allocate (solver%gidx(k), solver%gside(4, k), solver%ggm(2, k), solver%gfirst(2, k), solver%gslot(4, k), &
+                  solver%gcoh(k), solver%gst(k), solver%gc(pk_size, k), solver%gwt(4, k), solver%gr(2, k))
+      end if
+      ! Warm start of the contacts with a meshed side.
+      do k = 1, n
+        if (.not. c%active(k)) cycle
+        if (c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) cycle
+        if (all(c%r(:, k) == 0.0_wp)) cycle
+        do sd = 1, 2
+          if (side_model(c, k, sd) == bm_rigid) then
+            call inject_rigid_side(k, sd, c%r(1, k), c%r(2, k))
+          else
+            mb = solver%gm(sd, k)
+            g0 = solver%goff(sd, k)
+            v0 = solver%moff(side_body(c, k, sd))
+            do i = 1, mb
+              solver%mv(v0 + i) = solver%mv(v0 + i) + solver%gmat(g0 + 2 * i - 1) * c%r(1, k) + &
+                                  solver%gmat(g0 + 2 * i) * c%r(2, k)
+            end do
+          end if
+        end do
+      end do
+    end subroutine pack_meshes
+
+    !> Impulse (dt, dn) of contact k on its rigid side sd, in the packed bodies.
+    subroutine inject_rigid_side(k, sd, dt, dn)
+      integer, intent(in) :: k, sd
+      real(wp), intent(in) :: dt, dn
+      integer :: a
+      real(wp) :: p(2), sgn
+      a = solver%bslot(side_body(c, k, sd))
+      sgn = merge(1.0_wp, -1.0_wp, sd == 1)
+      p(1) = dt * c%normal(2, k) + dn * c%normal(1, k)
+      p(2) = -dt * c%normal(1, k) + dn * c%normal(2, k)
+      solver%bv(1:2, a) = solver%bv(1:2, a) + sgn * solver%bv(4:5, a) * p
+      solver%bv(3, a) = solver%bv(3, a) + sgn * solver%bv(6, a) * &
+                        (dt * c%lever(2 * sd - 1, k) + dn * c%lever(2 * sd, k))
+    end subroutine inject_rigid_side
+
+    !> Velocities of the meshed bodies from the contact impulses on their nodes.
+    subroutine mesh_velocities()
+      integer :: k, sd, i
+      real(wp), allocatable :: imp(:, :)
+      real(wp) :: p(2), sgn
+      allocate (imp(2, m%nnodes))
+      imp = 0.0_wp
+      do k = 1, n
+        if (.not. c%active(k)) cycle
+        p(1) = c%r(1, k) * c%normal(2, k) + c%r(2, k) * c%normal(1, k)
+        p(2) = -c%r(1, k) * c%normal(1, k) + c%r(2, k) * c%normal(2, k)
+        do sd = 1, 2
+          if (side_model(c, k, sd) /= bm_mesh) cycle
+          sgn = merge(1.0_wp, -1.0_wp, sd == 1)
+          do i = 2 * sd - 1, 2 * sd
+            imp(:, c%mnode(i, k)) = imp(:, c%mnode(i, k)) + sgn * c%mwt(i, k) * p
+          end do
+        end do
+      end do
+      call mailx_velocity_from_impulses(m, imp)
+    end subroutine mesh_velocities
+
     !> One Gauss–Seidel sweep; with check, LMGC90's norm sums of this sweep.
-    subroutine sweep(check)
-      logical, intent(in) :: check
-      real(wp) :: s6(6)
+    subroutine sweep(check, evaluate_only)
+      logical, intent(in) :: check, evaluate_only
+      real(wp) :: s6(6), g6(6), gmax(2)
       integer :: np
       np = solver%np
       call gs_sweep_2d_packed(np, solver%pb, solver%pc, solver%pcoh, solver%any_coh, c%coh, solver%pr, solver%pst, solver%bv, &
-                              solver%s%relax, check, s6, maxes)
+                              solver%s%relax, check, s6, maxes, evaluate_only)
+      if (solver%ng > 0) then
+        call gs_sweep_mesh(solver%ng, solver%gc, solver%gside, solver%ggm, solver%gfirst, solver%gslot, solver%gwt, &
+                           solver%gcoh, c%coh, solver%gr, solver%gst, solver%bv, solver%mv, solver%gmat, &
+                           solver%s%relax, check, g6, gmax, evaluate_only)
+        s6 = s6 + g6
+        maxes = max(maxes, gmax)
+      end if
       if (check) sums(1:6) = s6
     end subroutine sweep
 

@@ -1,168 +1,657 @@
 !> Everything a run writes: DISPLAY/*.vtu + DISPLAY/fracas.pvd (ParaView),
-!> OUTBOX/fracas.h5 (states, contacts, solver and energy series) and
-!> OUTBOX/DOF.OUT.n + Vloc_Rloc.OUT.n in LMGC90's layout. Converts the scene
-!> to the plain arrays and records the io writers take.
+!> OUTBOX/fracas.h5 (what the run was, states, contacts, solver and energy
+!> series), OUTBOX/DOF.OUT.n + Vloc_Rloc.OUT.n in LMGC90's layout and the
+!> POSTPRO/ files of POSTPRO.DAT. Converts the scene to the plain arrays and
+!> records the io writers take.
+!>
+!> Results never mix: output_open refuses to start where files of an earlier
+!> run lie (OUTBOX/, DISPLAY/, POSTPRO/ names a run writes), or removes them
+!> all first with overwrite; '.part' files of a killed run are removed.
 module fracas_output
-  use fracas_kinds, only: wp, ik
+  use fracas_kinds, only: wp, ik, i8
   use fracas_errors, only: fatal
-  use fracas_ids, only: inter_names, status_names, n_inter
-  use fracas_files, only: make_dir, file_exists
-  use fracas_deck, only: dof_record_t, contact_record_t
-  use fracas_vtk, only: vtk_field, write_vtu, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_vertex
-  use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc
+  use fracas_ids, only: inter_names, status_names, n_inter, bm_rigid, bm_mesh
+  use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, list_dir, name_t
+  use fracas_deck, only: dof_record_t, contact_record_t, deck_t, run_control_t, gpv_record_t
+  use fracas_datbox_text, only: itoa, load_text, text_file_t
+  use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset, h5_close_group, h5_create_group
+  use fracas_vtk, only: vtu_t, vtu_begin, vtu_points, vtu_cells, vtu_vertex_cells, vtu_point_data, &
+                        vtu_cell_data, vtu_end, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_polygon, &
+                        vtu_cells_fixed, vtk_line
+  use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc, tk_disk, &
+                               tk_xksid, tk_alpxx
   use fracas_scene, only: scene_t, step_report_t
   use fracas_version, only: version_string
   use fracas_contact_laws, only: law_czm
-  use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file
+  use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file, write_gpv_file
+  use fracas_mailx, only: mailx_gauss_values
+  use fracas_elements, only: el_ngauss_gpv, el_name, el_vtk_type, el_vtk_order
+  use fracas_cracks, only: crack_paths_t, cracks_paths, cracks_lengths, cracks_fragments
+  use fracas_bulk, only: bulk_j2, gp_sxx, gp_szz, gp_ezz, gp_pxx, gp_pzz, gp_p, plane_stress
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
-                               results_write_snapshot, results_append_step, results_close
+                               results_write_snapshot, results_append_step, results_close, results_flush, &
+                               results_group, results_last_snapshot
+  use fracas_postpro, only: postpro_t, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns
   implicit none
   private
   public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
-            output_close, series_names
+            output_flush, output_close, series_names, output_owns, output_summary
 
-  integer, parameter :: n_series = 23
+  integer, parameter :: n_series = 33
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
     'step', 'time', 'contacts', 'active_contacts', 'sweeps', 'converged', 'residual_natural_map', &
     'residual_onepq', 'quad_dv', 'maxm_dv', 'mean_dvor', 'kinetic_energy', 'work_gravity', &
     'work_forces', 'work_supports', 'dissipated', 'cohesive_energy', 'damage_dissipated', 'balance_error', &
-    'mean_overlap', 'max_overlap', 'solve_time', 'step_time']
-  integer, parameter :: n_outline = 24   !< segments of a circle outline
+    'mean_overlap', 'max_overlap', 'solve_time', 'step_time', 'elastic_energy', 'plastic_work', &
+    'newton_iterations', 'crack_length', 'damaged_length', 'broken_interfaces', 'damaged_interfaces', &
+    'bodies_time', 'detect_time', 'prepare_time']
+  integer, parameter :: n_outline = 24   !< points of a circle or wall outline
+  !> Seconds of wall time between flushes of the POSTPRO files.
+  real(wp), parameter :: flush_interval = 2.0_wp
+  character(len=*), parameter :: units_statement = 'the units of the deck: Fracas has no unit system of '// &
+    'its own; lengths, masses, times, forces (and so velocities, energies) are in the units the deck '// &
+    'was written in (SI for a deck in metres, kilograms and seconds)'
 
   type :: output_t
     character(len=:), allocatable :: outbox, display
     type(pvd_t) :: pvd
     integer :: n_vtk = 0, n_out = 0
+    logical :: disk_points = .true.       !< disks as points with a radius (else filled polygons)
+    logical :: vtk_single = .true.        !< reals of the .vtu as Float32
+    integer :: part_disks = -1, part_shapes = -1, part_contacts = -1   !< .pvd parts (-1: not written)
+    integer :: part_meshes = -1, part_interfaces = -1, part_cracks = -1
     type(results_h5_t) :: h5
     logical :: h5_open = .false.
+    type(postpro_t) :: pp
+    integer(i8) :: last_flush = 0
+    !> CPU time spent writing (so that a loaded machine does not inflate it), and
+    !> writes, per kind: VTK frames, HDF5 snapshots, DOF/Vloc_Rloc files, series
+    !> rows (with POSTPRO lines).
+    real(wp) :: seconds(4) = 0.0_wp
+    integer :: writes(4) = 0
   end type output_t
+
+  integer, parameter :: k_vtk = 1, k_snapshot = 2, k_outbox = 3, k_series = 4
 
 contains
 
-  !> Create OUTBOX/ and DISPLAY/ under out_dir and open OUTBOX/fracas.h5.
-  !> Existing results are kept unless overwrite is set.
-  subroutine output_open(o, sc, out_dir, case_dir, overwrite, with_vtk, with_h5)
+  !> Prepare OUT_DIR for the run of DECK (the scene SC built from it): clear
+  !> or refuse the results of an earlier run (see the module comment), create
+  !> OUTBOX/ (and DISPLAY/ if output_vtk_every > 0, POSTPRO/ if POSTPRO.DAT
+  !> asks for files), open OUTBOX/fracas.h5 and write what the run is.
+  subroutine output_open(o, sc, deck, out_dir, overwrite)
     type(output_t), intent(out) :: o
     type(scene_t), intent(in) :: sc
-    character(len=*), intent(in) :: out_dir, case_dir
-    logical, intent(in) :: overwrite, with_vtk, with_h5
+    type(deck_t), intent(in) :: deck
+    character(len=*), intent(in) :: out_dir
+    logical, intent(in) :: overwrite
     character(len=5), allocatable :: law_names(:)
     integer :: k
+    logical :: with_vtk
     o%outbox = trim(out_dir)//'/OUTBOX'
     o%display = trim(out_dir)//'/DISPLAY'
-    if (.not. overwrite) then
-      if (file_exists(o%outbox//'/fracas.h5') .or. file_exists(o%outbox//'/DOF.OUT.1') .or. &
-          file_exists(o%display//'/fracas.pvd')) call fatal('results already exist in '// &
-          trim(out_dir)//' (OUTBOX/ or DISPLAY/): pass --overwrite to replace them, or --output DIR')
-    end if
+    with_vtk = deck%run%output_vtk_every > 0
+    o%disk_points = deck%run%output_vtk_disks /= 'polygons'
+    o%vtk_single = deck%run%output_vtk_precision /= 'double'
+    call clear_earlier_results(out_dir, overwrite, with_vtk)
     call make_dir(o%outbox, parents=.true.)
     if (with_vtk) then
       call make_dir(o%display, parents=.true.)
       call pvd_init(o%pvd, o%display//'/fracas.pvd')
+      k = 0
+      if (o%disk_points .and. any(sc%tactors%kind(1:sc%tactors%n) == tk_disk)) then
+        o%part_disks = k
+        k = k + 1
+      end if
+      if (any(sc%tactors%kind(1:sc%tactors%n) /= tk_disk .and. sc%tactors%model(1:sc%tactors%n) == bm_rigid) .or. &
+          (.not. o%disk_points .and. any(sc%tactors%kind(1:sc%tactors%n) == tk_disk))) then
+        o%part_shapes = k
+        k = k + 1
+      end if
+      if (sc%meshes%n > 0) then
+        o%part_meshes = k
+        k = k + 1
+      end if
+      if (sc%cracks%nedges > 0) then
+        o%part_interfaces = k
+        o%part_cracks = k + 1
+        k = k + 2
+      end if
+      o%part_contacts = k
     end if
-    if (with_h5) then
-      call results_open(o%h5, o%outbox//'/fracas.h5', overwrite, case_dir, sc%h, sc%theta, series_names, &
-                        version=version_string)
-      o%h5_open = .true.
-      call results_write_bodies(o%h5, sc%bodies%number, sc%bodies%mass(1, :), sc%bodies%mass(3, :), &
-                                sc%bodies%avrd, sc%bodies%ref)
-      allocate (law_names(size(sc%laws)))
-      do k = 1, size(sc%laws)
-        law_names(k) = sc%laws(k)%nickname
-      end do
-      call results_write_help(o%h5, status_names, inter_names, law_names)
-    end if
+
+    call results_open(o%h5, o%outbox//'/fracas.h5', overwrite, deck%case_dir, sc%h, sc%theta, series_names, &
+                      version=version_string)
+    o%h5_open = .true.
+    call h5_write_attr(o%h5%fid, 'units', units_statement)
+    call h5_write_attr(o%h5%fid, 'gravity', deck%gravity)
+    call results_write_bodies(o%h5, sc%bodies%number, sc%bodies%mass(1, :), sc%bodies%mass(3, :), &
+                              sc%bodies%avrd, sc%bodies%ref)
+    if (sc%meshes%n > 0) call mesh_static(o, sc)
+    allocate (law_names(size(sc%laws)))
+    do k = 1, size(sc%laws)
+      law_names(k) = sc%laws(k)%nickname
+    end do
+    call results_write_help(o%h5, status_names, inter_names, law_names)
+    call write_run_group(o, deck)
+    call write_contactors_group(o, sc)
+    call results_flush(o%h5)
+
+    call postpro_open(o%pp, deck%postpro, out_dir, deck%run%nlgs_check)
+    call system_clock(o%last_flush)
   end subroutine output_open
 
-  !> DISPLAY/bodies_NNNNNN.vtu (contactor outlines) and contacts_NNNNNN.vtu
-  !> (contact points), listed in DISPLAY/fracas.pvd as parts 0 and 1.
+  !> /run: the run control the run used (every COMMAND.DAT keyword, after the
+  !> --set settings), where it came from, and the settings themselves.
+  subroutine write_run_group(o, deck)
+    type(output_t), intent(inout) :: o
+    type(deck_t), intent(in) :: deck
+    integer(hid_t) :: g
+    type(text_file_t) :: tf
+    character(len=:), allocatable :: text
+    integer :: k
+    associate (r => deck%run)
+      call results_group(o%h5, 'run', g)
+      call h5_write_attr(g, 'time_step', r%time_step)
+      call h5_write_attr(g, 'number_of_steps', r%number_of_steps)
+      call h5_write_attr(g, 'final_time', r%final_time)
+      call h5_write_attr(g, 'theta', r%theta)
+      call h5_write_attr(g, 'detection_frequency', r%detection_frequency)
+      call h5_write_attr(g, 'nlgs_check', trim(r%nlgs_check))
+      call h5_write_attr(g, 'nlgs_tolerance', r%nlgs_tolerance)
+      call h5_write_attr(g, 'nlgs_relaxation', r%nlgs_relaxation)
+      call h5_write_attr(g, 'nlgs_sweeps_per_check', r%nlgs_sweeps_per_check)
+      call h5_write_attr(g, 'nlgs_max_checks', r%nlgs_max_checks)
+      call h5_write_attr(g, 'nlgs_order', trim(r%nlgs_order))
+      call h5_write_attr(g, 'nlgs_seed', r%nlgs_seed)
+      call h5_write_attr(g, 'nlgs_unconverged', trim(r%nlgs_unconverged))
+      call h5_write_attr(g, 'output_dof_every', r%output_dof_every)
+      call h5_write_attr(g, 'output_vtk_every', r%output_vtk_every)
+      call h5_write_attr(g, 'output_vtk_disks', trim(r%output_vtk_disks))
+      call h5_write_attr(g, 'output_vtk_precision', trim(r%output_vtk_precision))
+      call h5_write_attr(g, 'output_hdf5_every', r%output_hdf5_every)
+      call h5_write_attr(g, 'progress_every', r%progress_every)
+      call h5_write_attr(g, 'driven_start', trim(r%driven_start))
+      call h5_write_attr(g, 'plane', trim(r%plane))
+      call h5_write_attr(g, 'newton_tolerance', r%newton_tolerance)
+      call h5_write_attr(g, 'newton_max_iterations', r%newton_max_iterations)
+      call h5_write_attr(g, 'linear_solver', trim(r%linear_solver))
+    end associate
+    text = ''
+    if (allocated(deck%command_file)) text = deck%command_file
+    call h5_write_attr(g, 'command_file', text)
+    if (len(text) > 0) then
+      ! The file as it was read (comments included), for the record.
+      call load_text(deck%command_file, tf, keep_comments=.true.)
+      text = ''
+      do k = 1, tf%n
+        text = text//tf%lines(k)%text//achar(10)
+      end do
+      call h5_write_attr(g, 'command_text', text)
+    end if
+    if (allocated(deck%settings)) then
+      call h5_write_dataset(g, 'settings', deck%settings)
+    else
+      call h5_write_dataset(g, 'settings', [character(len=1) ::])
+    end if
+    call h5_close_group(g)
+  end subroutine write_run_group
+
+  !> /contactors: the geometry of every contactor: of a rigid body in its
+  !> body's frame, of a meshed body by its mesh nodes.
+  subroutine write_contactors_group(o, sc)
+    type(output_t), intent(inout) :: o
+    type(scene_t), intent(in) :: sc
+    integer(hid_t) :: g
+    integer(ik), allocatable :: first(:), nvert(:), nfirst(:), nnodes(:), body(:)
+    integer :: k
+    associate (t => sc%tactors)
+      allocate (first(t%n), nvert(t%n), nfirst(t%n), nnodes(t%n), body(t%n))
+      do k = 1, t%n
+        first(k) = 0
+        nvert(k) = 0
+        nfirst(k) = 0
+        nnodes(k) = 0
+        if (t%kind(k) == tk_polyg) then
+          first(k) = int(t%vfirst(k) - 1, ik)
+          nvert(k) = int(t%vfirst(k + 1) - t%vfirst(k), ik)
+        end if
+        if (t%model(k) == bm_rigid) then
+          body(k) = int(sc%bodies%number(t%body(k)), ik)
+        else
+          body(k) = int(t%body(k), ik)      ! MAILx bodies are numbered in deck order
+          nfirst(k) = int(t%nfirst(k) - 1, ik)
+          nnodes(k) = int(t%nfirst(k + 1) - t%nfirst(k), ik)
+        end if
+      end do
+      call results_group(o%h5, 'contactors', g)
+      call h5_write_attr(g, 'count', int(t%n, ik))
+      call h5_write_dataset(g, 'model', int(t%model(1:t%n), ik))
+      call h5_write_dataset(g, 'body', body)
+      call h5_write_dataset(g, 'rank', int(t%rank(1:t%n), ik))
+      call h5_write_dataset(g, 'kind', int(t%kind(1:t%n), ik))
+      call h5_write_dataset(g, 'kind_names', [(tactor_kind_name(k), k=tk_disk, tk_alpxx)])
+      call h5_write_dataset(g, 'color', t%color(1:t%n))
+      call h5_write_dataset(g, 'radius', t%radius(1:t%n))
+      call h5_write_dataset(g, 'half_length', t%ax1(1:t%n))
+      call h5_write_dataset(g, 'half_thickness', t%ax2(1:t%n))
+      call h5_write_dataset(g, 'shift', t%shift(:, 1:t%n))
+      call h5_write_dataset(g, 'vertex_first', first)
+      call h5_write_dataset(g, 'vertex_count', nvert)
+      if (allocated(t%vert)) then
+        call h5_write_dataset(g, 'vertices', t%vert)
+      else
+        call h5_write_dataset(g, 'vertices', reshape([real(wp) ::], [2, 0]))
+      end if
+      call h5_write_dataset(g, 'node_first', nfirst)
+      call h5_write_dataset(g, 'node_count', nnodes)
+      if (allocated(t%nodes)) then
+        call h5_write_dataset(g, 'nodes', int(t%nodes, ik))
+        call h5_write_dataset(g, 'apab', t%apab(1:t%n))
+      else
+        call h5_write_dataset(g, 'nodes', [integer(ik) ::])
+        call h5_write_dataset(g, 'apab', [real(wp) ::])
+      end if
+      call h5_close_group(g)
+    end associate
+  end subroutine write_contactors_group
+
+  !> Refuse to start where results of an earlier run lie, or remove them
+  !> (overwrite); remove the '.part' files of a killed run either way.
+  subroutine clear_earlier_results(out_dir, overwrite, with_vtk)
+    character(len=*), intent(in) :: out_dir
+    logical, intent(in) :: overwrite, with_vtk
+    character(len=7), parameter :: dirs(3) = [character(len=7) :: 'OUTBOX', 'DISPLAY', 'POSTPRO']
+    type(name_t), allocatable :: names(:)
+    character(len=:), allocatable :: found, path, base
+    integer :: d, k, nfound
+    found = ''
+    nfound = 0
+    do d = 1, size(dirs)
+      path = trim(out_dir)//'/'//trim(dirs(d))
+      if (.not. dir_exists(path)) cycle
+      call list_dir(path, names)
+      do k = 1, size(names)
+        if (.not. output_owns(trim(dirs(d)), names(k)%s)) cycle
+        nfound = nfound + 1
+        if (nfound <= 3) found = found//', '//trim(dirs(d))//'/'//names(k)%s
+      end do
+    end do
+    if (nfound > 0 .and. .not. overwrite) call fatal('results of an earlier run in '//trim(out_dir)//': '// &
+      found(3:)//merge(', ...', '     ', nfound > 3)//' ('//itoa(nfound)//' files). Pass --overwrite to '// &
+      'remove them all and run again, or --output DIR to write elsewhere')
+    do d = 1, size(dirs)
+      path = trim(out_dir)//'/'//trim(dirs(d))
+      if (.not. dir_exists(path)) cycle
+      call list_dir(path, names)
+      do k = 1, size(names)
+        base = names(k)%s
+        if (len(base) > 5) then
+          if (base(len(base) - 4:) == '.part') base = base(1:len(base) - 5)
+        end if
+        if (output_owns(trim(dirs(d)), base)) call remove_file(path//'/'//names(k)%s)
+      end do
+      ! A DISPLAY left empty by the clearing, in a run without VTK, goes too.
+      if (dirs(d) == 'DISPLAY' .and. .not. with_vtk) then
+        call list_dir(path, names)
+        if (size(names) == 0) call remove_file(path)
+      end if
+    end do
+  end subroutine clear_earlier_results
+
+  !> True for NAME in folder DIR (OUTBOX, DISPLAY or POSTPRO) when it is a
+  !> file a Fracas run writes there: fracas.h5, DOF.OUT.n, Vloc_Rloc.OUT.n,
+  !> GPV.OUT.n; fracas.pvd and PIECE_NNNNNN.vtu (PIECE: lower-case letters);
+  !> the POSTPRO files of fracas_postpro.
+  logical function output_owns(dir, name)
+    character(len=*), intent(in) :: dir, name
+    integer :: u, v
+    output_owns = .false.
+    select case (dir)
+    case ('OUTBOX')
+      output_owns = name == 'fracas.h5' .or. counted(name, 'DOF.OUT.') .or. counted(name, 'Vloc_Rloc.OUT.') &
+                    .or. counted(name, 'GPV.OUT.')
+    case ('DISPLAY')
+      if (name == 'fracas.pvd') then
+        output_owns = .true.
+      else if (len(name) > 11) then
+        u = index(name, '_', back=.true.)
+        v = len(name) - 3
+        if (u > 1 .and. name(v:) == '.vtu') output_owns = verify(name(1:u - 1), 'abcdefghijklmnopqrstuvwxyz') == 0 &
+          .and. v - u - 1 >= 6 .and. verify(name(u + 1:v - 1), '0123456789') == 0
+      end if
+    case ('POSTPRO')
+      output_owns = postpro_owns(name)
+    end select
+
+  contains
+
+    logical function counted(s, prefix)
+      character(len=*), intent(in) :: s, prefix
+      counted = .false.
+      if (len(s) <= len(prefix)) return
+      counted = s(1:len(prefix)) == prefix .and. verify(s(len(prefix) + 1:), '0123456789') == 0
+    end function counted
+  end function output_owns
+
+  !> One DISPLAY frame, listed in DISPLAY/fracas.pvd at the scene time:
+  !>   disks_NNNNNN.vtu     one vertex per disk at its centre with its radius
+  !>                        (point data: draw as Point Gaussian or glyphs)
+  !>   shapes_NNNNNN.vtu    polygons and walls as filled polygons, drums as
+  !>                        circles (and disks, as filled polygons, when
+  !>                        output_vtk_disks = polygons)
+  !>   contacts_NNNNNN.vtu  one vertex per contact at its point
+  !> Pieces the scene does not have are not written; each piece keeps its
+  !> part number in the .pvd for the whole run.
   subroutine output_vtk(o, sc)
     type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
-    character(len=32) :: bname, cname
+    character(len=6) :: num
+    real(wp) :: t0
+    call cpu_time(t0)
     o%n_vtk = o%n_vtk + 1
-    write (bname, '(a,i6.6,a)') 'bodies_', o%n_vtk, '.vtu'
-    write (cname, '(a,i6.6,a)') 'contacts_', o%n_vtk, '.vtu'
-    call write_bodies_vtu(o%display//'/'//trim(bname), sc)
-    call write_contacts_vtu(o%display//'/'//trim(cname), sc)
-    call pvd_add(o%pvd, sc%time, trim(bname), part=0)
-    call pvd_add(o%pvd, sc%time, trim(cname), part=1)
+    write (num, '(i6.6)') o%n_vtk
+    if (o%part_disks >= 0) then
+      call write_disks_vtu(o%display//'/disks_'//num//'.vtu', sc, o%vtk_single)
+      call pvd_add(o%pvd, sc%time, 'disks_'//num//'.vtu', part=o%part_disks)
+    end if
+    if (o%part_shapes >= 0) then
+      call write_shapes_vtu(o%display//'/shapes_'//num//'.vtu', sc, o%disk_points, o%vtk_single)
+      call pvd_add(o%pvd, sc%time, 'shapes_'//num//'.vtu', part=o%part_shapes)
+    end if
+    if (o%part_meshes >= 0) then
+      call write_meshes_vtu(o%display//'/meshes_'//num//'.vtu', sc, o%vtk_single)
+      call pvd_add(o%pvd, sc%time, 'meshes_'//num//'.vtu', part=o%part_meshes)
+    end if
+    if (o%part_interfaces >= 0) then
+      call write_interfaces_vtu(o%display//'/interfaces_'//num//'.vtu', sc, o%vtk_single)
+      call pvd_add(o%pvd, sc%time, 'interfaces_'//num//'.vtu', part=o%part_interfaces)
+      call write_cracks_vtu(o%display//'/cracks_'//num//'.vtu', sc, o%vtk_single)
+      call pvd_add(o%pvd, sc%time, 'cracks_'//num//'.vtu', part=o%part_cracks)
+    end if
+    call write_contacts_vtu(o%display//'/contacts_'//num//'.vtu', sc, o%vtk_single)
+    call pvd_add(o%pvd, sc%time, 'contacts_'//num//'.vtu', part=o%part_contacts)
+    call clocked(o, k_vtk, t0)
   end subroutine output_vtk
 
-  subroutine write_bodies_vtu(path, sc)
+  !> Add the CPU time since t0 (from cpu_time) to kind k.
+  subroutine clocked(o, k, t0)
+    type(output_t), intent(inout) :: o
+    integer, intent(in) :: k
+    real(wp), intent(in) :: t0
+    real(wp) :: t1
+    call cpu_time(t1)
+    o%seconds(k) = o%seconds(k) + (t1 - t0)
+    o%writes(k) = o%writes(k) + 1
+  end subroutine clocked
+
+  !> One line on what the output cost: for each kind written, the writes and
+  !> the CPU time spent (e.g. for a progress report at the end of a run).
+  function output_summary(o) result(s)
+    type(output_t), intent(in) :: o
+    character(len=:), allocatable :: s
+    character(len=*), parameter :: what(4) = [character(len=15) :: 'VTK frames', 'HDF5 snapshots', &
+                                              'DOF/Vloc files', 'series rows']
+    character(len=64) :: buf
+    integer :: k
+    s = ''
+    do k = 1, 4
+      if (o%writes(k) == 0) cycle
+      write (buf, '(i0,1x,a,1x,f0.3,a,f0.3,a)') o%writes(k), trim(what(k)), o%seconds(k), ' s CPU (', &
+        1.0e3_wp * o%seconds(k) / o%writes(k), ' ms each)'
+      if (len(s) > 0) s = s//', '
+      s = s//trim(buf)
+    end do
+  end function output_summary
+
+  !> Meshed bodies as an unstructured grid in the current configuration:
+  !> point data displacement and velocity; cell data (Gauss-point averages)
+  !> stress tensor (xx, yy, zz, xy as a symmetric 3x3), von Mises stress,
+  !> equivalent plastic strain, material, body.
+  subroutine write_meshes_vtu(path, sc, single)
     character(len=*), intent(in) :: path
     type(scene_t), intent(in) :: sc
-    real(wp), allocatable :: pts(:, :), vel(:, :), outline(:, :)
+    logical, intent(in) :: single
+    type(vtu_t) :: w
+    real(wp), allocatable :: gp(:, :), stress(:, :), vm(:), p(:), avg(:)
+    integer(ik), allocatable :: conn(:), offs(:), types(:), body(:), mat(:)
+    integer :: e, b, ng, nn
+    associate (m => sc%meshes)
+      allocate (gp(size(m%gp, 1), size(m%gp, 2)))
+      call mailx_gauss_values(m, gp)
+      allocate (conn(size(m%el_nodes)), offs(m%nelem), types(m%nelem), body(m%nelem), mat(m%nelem), &
+                stress(6, m%nelem), vm(m%nelem), p(m%nelem))
+      do b = 1, m%n
+        do e = m%elem_first(b), m%elem_first(b + 1) - 1
+          nn = m%el_first(e + 1) - m%el_first(e)
+          ! VTK node order of the element, 0-based points
+          conn(m%el_first(e):m%el_first(e + 1) - 1) = &
+            int(m%el_nodes(m%el_first(e) - 1 + el_vtk_order(m%el_kind(e))) - 1, ik)
+          offs(e) = int(m%el_first(e + 1) - 1, ik)
+          types(e) = int(el_vtk_type(m%el_kind(e)), ik)
+          body(e) = int(b, ik)
+          mat(e) = int(m%el_mat(e), ik)
+          ng = m%el_gp(e + 1) - m%el_gp(e)
+          avg = sum(gp(:, m%el_gp(e):m%el_gp(e + 1) - 1), dim=2) / ng
+          ! symmetric tensor as ParaView reads it: xx, yy, zz, xy, yz, xz
+          stress(:, e) = [avg(gp_sxx), avg(gp_sxx + 1), avg(gp_szz), avg(gp_sxx + 2), 0.0_wp, 0.0_wp]
+          vm(e) = von_mises(avg(gp_sxx:gp_szz))
+          p(e) = avg(gp_p)
+        end do
+      end do
+      call vtu_begin(w, path, m%nnodes, m%nelem, time=sc%time, single=single)
+      call vtu_points(w, m%ref + m%x)
+      call vtu_cells(w, conn, offs, types)
+      call vtu_point_data(w, 'displacement', m%x)
+      call vtu_point_data(w, 'velocity', m%v)
+      call vtu_cell_data(w, 'stress', stress)
+      call vtu_cell_data(w, 'von_mises', vm)
+      call vtu_cell_data(w, 'plastic_strain', p)
+      call vtu_cell_data(w, 'material', mat)
+      call vtu_cell_data(w, 'body', body)
+      call vtu_end(w)
+    end associate
+  end subroutine write_meshes_vtu
+
+  !> Cohesive interfaces as lines (the candidate edge, current configuration)
+  !> with cell data beta (the lowest of its points), broken (1/0), damaged and
+  !> family (index in /mesh interface_families).
+  subroutine write_interfaces_vtu(path, sc, single)
+    character(len=*), intent(in) :: path
+    type(scene_t), intent(in) :: sc
+    logical, intent(in) :: single
+    type(vtu_t) :: w
+    real(wp), allocatable :: pts(:, :), beta(:)
+    integer(ik), allocatable :: nodes(:, :), broken(:), damaged(:), family(:)
+    integer :: e, j, ne
+    associate (cr => sc%cracks, m => sc%meshes)
+      ne = cr%nedges
+      allocate (pts(2, 2 * ne), nodes(2, ne), beta(ne), broken(ne), damaged(ne), family(ne))
+      do e = 1, ne
+        do j = 1, 2
+          pts(:, 2 * e - 2 + j) = m%ref(:, cr%edge_nodes(j, e)) + m%x(:, cr%edge_nodes(j, e))
+        end do
+        nodes(:, e) = [int(2 * e - 2, ik), int(2 * e - 1, ik)]
+        associate (p => cr%edge_pts(cr%edge_first(e):cr%edge_first(e + 1) - 1))
+          beta(e) = minval(cr%pt_beta(p), mask=cr%pt_glued(p), dim=1)
+          if (.not. any(cr%pt_glued(p))) beta(e) = 0.0_wp
+        end associate
+        broken(e) = merge(1_ik, 0_ik, cr%edge_broken_step(e) > 0)
+        damaged(e) = merge(1_ik, 0_ik, beta(e) < 1.0_wp)
+        family(e) = int(cr%edge_family(e), ik)
+      end do
+      call vtu_begin(w, path, 2 * ne, ne, time=sc%time, single=single)
+      call vtu_points(w, pts)
+      call vtu_cells_fixed(w, nodes, vtk_line)
+      call vtu_cell_data(w, 'beta', beta)
+      call vtu_cell_data(w, 'broken', broken)
+      call vtu_cell_data(w, 'damaged', damaged)
+      call vtu_cell_data(w, 'family', family)
+      call vtu_end(w)
+    end associate
+  end subroutine write_interfaces_vtu
+
+  !> Crack paths: the broken edges joined into cracks, as lines with the
+  !> crack number (1 = longest) and its length as cell data.
+  subroutine write_cracks_vtu(path, sc, single)
+    character(len=*), intent(in) :: path
+    type(scene_t), intent(in) :: sc
+    logical, intent(in) :: single
+    type(vtu_t) :: w
+    type(crack_paths_t) :: paths
+    integer :: ns
+    call cracks_paths(sc%cracks, sc%meshes, paths)
+    ns = size(paths%seg, 2)
+    call vtu_begin(w, path, size(paths%points, 2), ns, time=sc%time, single=single)
+    call vtu_points(w, paths%points)
+    call vtu_cells_fixed(w, int(paths%seg - 1, ik), vtk_line)
+    call vtu_cell_data(w, 'crack', int(paths%seg_crack, ik))
+    if (ns > 0) then
+      call vtu_cell_data(w, 'crack_length', paths%crack_length(paths%seg_crack))
+    else
+      call vtu_cell_data(w, 'crack_length', [real(wp) ::])
+    end if
+    call vtu_end(w)
+  end subroutine write_cracks_vtu
+
+  !> Disks as points with their radius (and body state as point data).
+  subroutine write_disks_vtu(path, sc, single)
+    character(len=*), intent(in) :: path
+    type(scene_t), intent(in) :: sc
+    logical, intent(in) :: single
+    type(vtu_t) :: w
+    real(wp), allocatable :: pts(:, :), vel(:, :), ori(:, :), radius(:), rot(:), spin(:)
+    integer(ik), allocatable :: body(:)
+    real(wp) :: q(3)
+    integer :: k, n, ib
+    n = count(sc%tactors%kind(1:sc%tactors%n) == tk_disk)
+    allocate (pts(2, n), vel(3, n), ori(3, n), radius(n), rot(n), spin(n), body(n))
+    n = 0
+    associate (t => sc%tactors, b => sc%bodies)
+      do k = 1, t%n
+        if (t%kind(k) /= tk_disk) cycle
+        n = n + 1
+        ib = t%body(k)
+        q = b%ref(:, ib) + b%x(:, ib)
+        pts(:, n) = tactor_center(t, k, q)
+        radius(n) = t%radius(k)
+        vel(:, n) = [b%v(1, ib), b%v(2, ib), 0.0_wp]
+        ori(:, n) = [cos(q(3)), sin(q(3)), 0.0_wp]
+        rot(n) = b%x(3, ib)
+        spin(n) = b%v(3, ib)
+        body(n) = int(b%number(ib), ik)
+      end do
+    end associate
+    call vtu_begin(w, path, n, n, time=sc%time, single=single)
+    call vtu_points(w, pts)
+    call vtu_vertex_cells(w)
+    call vtu_point_data(w, 'radius', radius)
+    call vtu_point_data(w, 'body', body)
+    call vtu_point_data(w, 'velocity', vel)
+    call vtu_point_data(w, 'rotation', rot)
+    call vtu_point_data(w, 'spin', spin)
+    call vtu_point_data(w, 'orientation', ori)
+    call vtu_end(w)
+  end subroutine write_disks_vtu
+
+  !> Every contactor that is not a disk drawn as a point (all of them when
+  !> disks are drawn as polygons): one cell each, filled polygons (POLYG,
+  !> JONCx, disks) or closed poly-lines (xKSID, whose inside is empty).
+  subroutine write_shapes_vtu(path, sc, disk_points, single)
+    character(len=*), intent(in) :: path
+    type(scene_t), intent(in) :: sc
+    logical, intent(in) :: disk_points, single
+    type(vtu_t) :: w
+    real(wp), allocatable :: pts(:, :), vel(:, :), outline(:, :), rot(:), spin(:)
     integer(ik), allocatable :: conn(:), offs(:), types(:), body(:), kind(:)
-    real(wp), allocatable :: rot(:), spin(:)
-    integer :: k, j, np, nt, m
-    nt = sc%tactors%n
-    ! Sizes first (polygons: vertices + centre + closing point), then the points.
-    np = 0
-    do k = 1, nt
-      if (sc%tactors%kind(k) == tk_polyg) then
-        np = np + sc%tactors%vfirst(k + 1) - sc%tactors%vfirst(k) + 2
-      else
-        np = np + n_outline + 2
-      end if
-    end do
-    allocate (pts(3, np), conn(np), offs(nt), types(nt), body(nt), kind(nt), vel(3, nt), rot(nt), spin(nt))
-    np = 0
-    do k = 1, nt
-      associate (t => sc%tactors, b => sc%bodies)
+    integer :: k, j, np, nc, m, ib
+    associate (t => sc%tactors, b => sc%bodies)
+      np = 0
+      nc = 0
+      do k = 1, t%n
+        if (.not. is_shape(k)) cycle
+        nc = nc + 1
+        select case (t%kind(k))
+        case (tk_polyg)
+          np = np + t%vfirst(k + 1) - t%vfirst(k)
+        case (tk_xksid)
+          np = np + n_outline + 1
+        case default
+          np = np + n_outline
+        end select
+      end do
+      allocate (pts(2, np), conn(np), offs(nc), types(nc), body(nc), kind(nc), vel(3, nc), rot(nc), spin(nc))
+      np = 0
+      nc = 0
+      do k = 1, t%n
+        if (.not. is_shape(k)) cycle
+        nc = nc + 1
+        ib = t%body(k)
         outline = tactor_outline(sc, k)
         m = size(outline, 2)
-        pts(1:2, np + 1:np + m) = outline
-        pts(3, np + 1:np + m) = 0.0_wp
+        pts(:, np + 1:np + m) = outline
         conn(np + 1:np + m) = [(int(np + j, ik), j=0, m - 1)]
         np = np + m
-        offs(k) = int(np, ik)
-        types(k) = vtk_poly_line
-        body(k) = int(t%body(k), ik)
-        kind(k) = int(t%kind(k), ik)
-        vel(:, k) = [b%v(1, t%body(k)), b%v(2, t%body(k)), 0.0_wp]
-        rot(k) = b%x(3, t%body(k))
-        spin(k) = b%v(3, t%body(k))
-      end associate
-    end do
-    call write_vtu(path, pts, conn, offs, types, &
-                   cell_fields=[vtk_field('body', body), vtk_field('contactor_kind', kind), &
-                                vtk_field('velocity', vel), vtk_field('rotation', rot), vtk_field('spin', spin)], &
-                   time=sc%time)
-  end subroutine write_bodies_vtu
+        offs(nc) = int(np, ik)
+        types(nc) = merge(vtk_poly_line, vtk_polygon, t%kind(k) == tk_xksid)
+        body(nc) = int(b%number(ib), ik)
+        kind(nc) = int(t%kind(k), ik)
+        vel(:, nc) = [b%v(1, ib), b%v(2, ib), 0.0_wp]
+        rot(nc) = b%x(3, ib)
+        spin(nc) = b%v(3, ib)
+      end do
+    end associate
+    call vtu_begin(w, path, np, nc, time=sc%time, single=single)
+    call vtu_points(w, pts)
+    call vtu_cells(w, conn, offs, types)
+    call vtu_cell_data(w, 'body', body)
+    call vtu_cell_data(w, 'contactor_kind', kind)
+    call vtu_cell_data(w, 'velocity', vel)
+    call vtu_cell_data(w, 'rotation', rot)
+    call vtu_cell_data(w, 'spin', spin)
+    call vtu_end(w)
 
-  !> Outline of contactor k in the current configuration, as a polyline that
-  !> starts at the contactor centre (a spoke shows the rotation) and closes.
+  contains
+
+    logical function is_shape(k)
+      integer, intent(in) :: k
+      ! Contactors of meshed bodies are drawn with their mesh (meshes piece).
+      is_shape = sc%tactors%model(k) == bm_rigid .and. (sc%tactors%kind(k) /= tk_disk .or. .not. disk_points)
+    end function is_shape
+  end subroutine write_shapes_vtu
+
+  !> Outline of contactor k in the current configuration: the vertices of a
+  !> polygon, n_outline points around a disk or a wall (stadium), a closed
+  !> circle of n_outline + 1 points for a drum.
   function tactor_outline(sc, k) result(p)
     type(scene_t), intent(in) :: sc
     integer, intent(in) :: k
-    real(wp), allocatable :: p(:, :), v(:, :)
-    real(wp) :: q(3), c(2), ang, s
-    integer :: j, nv
+    real(wp), allocatable :: p(:, :)
+    real(wp) :: q(3), c(2), s
+    integer :: j
     associate (t => sc%tactors, b => sc%bodies)
       q = b%ref(:, t%body(k)) + b%x(:, t%body(k))
       c = tactor_center(t, k, q)
       select case (t%kind(k))
       case (tk_polyg)
-        v = tactor_vertices(t, k, q)
-        nv = size(v, 2)
-        allocate (p(2, nv + 2))
-        p(:, 1) = c
-        p(:, 2:nv + 1) = v
-        p(:, nv + 2) = v(:, 1)
+        p = tactor_vertices(t, k, q)
       case (tk_jonc)
-        allocate (p(2, n_outline + 2))
-        p(:, 1) = c
-        do j = 0, n_outline
+        allocate (p(2, n_outline))
+        do j = 0, n_outline - 1
           s = 2.0_wp * acos(-1.0_wp) * j / n_outline
-          p(:, j + 2) = c + stadium_point(t%ax1(k), t%ax2(k), q(3), s)
+          p(:, j + 1) = c + stadium_point(t%ax1(k), t%ax2(k), q(3), s)
+        end do
+      case (tk_xksid)
+        allocate (p(2, n_outline + 1))
+        do j = 0, n_outline
+          s = q(3) + 2.0_wp * acos(-1.0_wp) * j / n_outline
+          p(:, j + 1) = c + t%radius(k) * [cos(s), sin(s)]
         end do
       case default
-        allocate (p(2, n_outline + 2))
-        p(:, 1) = c
-        do j = 0, n_outline
-          ang = q(3) + 2.0_wp * acos(-1.0_wp) * j / n_outline
-          p(:, j + 2) = c + t%radius(k) * [cos(ang), sin(ang)]
+        allocate (p(2, n_outline))
+        do j = 0, n_outline - 1
+          s = q(3) + 2.0_wp * acos(-1.0_wp) * j / n_outline
+          p(:, j + 1) = c + t%radius(k) * [cos(s), sin(s)]
         end do
       end select
     end associate
@@ -178,18 +667,22 @@ contains
     p = [lx * cos(phi) - ly * sin(phi), lx * sin(phi) + ly * cos(phi)]
   end function stadium_point
 
-  subroutine write_contacts_vtu(path, sc)
+  !> Contacts as points (point data, for glyphs of the reaction or normal).
+  subroutine write_contacts_vtu(path, sc, single)
     character(len=*), intent(in) :: path
     type(scene_t), intent(in) :: sc
+    logical, intent(in) :: single
+    type(vtu_t) :: w
     real(wp), allocatable :: pts(:, :), nrm(:, :), reac(:, :), rn(:), rt(:), gap(:), beta(:)
-    integer(ik), allocatable :: conn(:), offs(:), types(:), status(:), inter(:), cdb(:), anb(:)
+    integer(ik), allocatable :: status(:), inter(:), law(:), cdb(:), anb(:)
     integer :: k, n
+    logical :: czm
     n = sc%contacts%n
-    allocate (pts(3, n), nrm(3, n), reac(3, n), rn(n), rt(n), gap(n), beta(n), conn(n), offs(n), types(n), &
-              status(n), inter(n), cdb(n), anb(n))
+    czm = any(sc%laws%kind == law_czm)
+    allocate (pts(2, n), nrm(3, n), reac(3, n), rn(n), rt(n), gap(n), beta(n), status(n), inter(n), law(n), cdb(n), anb(n))
     associate (c => sc%contacts)
       do k = 1, n
-        pts(:, k) = [c%point(:, k), 0.0_wp]
+        pts(:, k) = c%point(:, k)
         nrm(:, k) = [c%normal(:, k), 0.0_wp]
         rt(k) = c%r(1, k) / sc%h
         rn(k) = c%r(2, k) / sc%h
@@ -198,21 +691,35 @@ contains
         gap(k) = c%gap(k) + sc%h * c%u(2, k)
         beta(k) = 0.0_wp
         if (sc%laws(c%law(k))%kind == law_czm) beta(k) = c%internals(4, k)
-        conn(k) = int(k - 1, ik)
-        offs(k) = int(k, ik)
-        types(k) = vtk_vertex
         status(k) = int(c%status(k), ik)
         inter(k) = int(c%inter(k), ik)
-        cdb(k) = int(c%cdb(k), ik)
+        law(k) = int(c%law(k), ik)
+        cdb(k) = int(c%cdb(k), ik)     ! body number within its model (cd_model, an_model)
         anb(k) = int(c%anb(k), ik)
       end do
     end associate
-    call write_vtu(path, pts, conn, offs, types, &
-                   cell_fields=[vtk_field('normal', nrm), vtk_field('reaction', reac), vtk_field('rn', rn), &
-                                vtk_field('rt', rt), vtk_field('gap', gap), vtk_field('status', status), &
-                                vtk_field('inter', inter), vtk_field('cd_body', cdb), vtk_field('an_body', anb), &
-                                vtk_field('beta', beta), vtk_field('broken', broken_flags(sc))], &
-                   time=sc%time)
+    call vtu_begin(w, path, n, n, time=sc%time, single=single)
+    call vtu_points(w, pts)
+    call vtu_vertex_cells(w)
+    call vtu_point_data(w, 'normal', nrm)
+    call vtu_point_data(w, 'reaction', reac)
+    call vtu_point_data(w, 'rn', rn)
+    call vtu_point_data(w, 'rt', rt)
+    call vtu_point_data(w, 'gap', gap)
+    call vtu_point_data(w, 'status', status)
+    call vtu_point_data(w, 'inter', inter)
+    call vtu_point_data(w, 'law', law)
+    call vtu_point_data(w, 'cd_body', cdb)
+    call vtu_point_data(w, 'an_body', anb)
+    if (sc%meshes%n > 0) then
+      call vtu_point_data(w, 'cd_model', int(sc%contacts%cdm(1:n), ik))
+      call vtu_point_data(w, 'an_model', int(sc%contacts%anm(1:n), ik))
+    end if
+    if (czm) then
+      call vtu_point_data(w, 'beta', beta)
+      call vtu_point_data(w, 'broken', broken_flags(sc))
+    end if
+    call vtu_end(w)
   end subroutine write_contacts_vtu
 
   !> OUTBOX/DOF.OUT.n and OUTBOX/Vloc_Rloc.OUT.n (n counts the writes).
@@ -224,15 +731,29 @@ contains
     character(len=16) :: num
     integer :: k, it, m, pos
     integer :: per_type(n_inter)
+    real(wp) :: t0
+    call cpu_time(t0)
     o%n_out = o%n_out + 1
     write (num, '(i0)') o%n_out
-    allocate (dofs(sc%bodies%n))
+    allocate (dofs(sc%bodies%n + sc%meshes%n))
     do k = 1, sc%bodies%n
       dofs(k)%body = sc%bodies%number(k)
       dofs(k)%x = sc%bodies%x(:, k)
       dofs(k)%v = sc%bodies%v(:, k)
     end do
+    associate (ms => sc%meshes)
+      do k = 1, ms%n
+        associate (d => dofs(sc%bodies%n + k), i1 => ms%node_first(k), i2 => ms%node_first(k + 1) - 1)
+          d%model = 'MAILx'
+          d%body = k
+          d%nodes = [(it, it=1, i2 - i1 + 1)]
+          d%node_x = ms%x(:, i1:i2)
+          d%node_v = ms%v(:, i1:i2)
+        end associate
+      end do
+    end associate
     call write_dof_file(o%outbox//'/DOF.OUT.'//trim(num), sc%step, sc%time, dofs)
+    if (sc%meshes%n > 0) call write_gpv_file(o%outbox//'/GPV.OUT.'//trim(num), sc%step, sc%time, gpv_records(sc))
     ! LMGC90 lists interactions type by type, numbered within their type.
     allocate (recs(sc%contacts%n))
     per_type = 0
@@ -250,8 +771,12 @@ contains
           recs(pos)%antac = tactor_kind_name(t%kind(c%an(k)))
           recs(pos)%cdver = c%cdver(k)
           recs(pos)%anseg = c%anseg(k)
-          recs(pos)%icdbdy = sc%bodies%number(c%cdb(k))
-          recs(pos)%ianbdy = sc%bodies%number(c%anb(k))
+          recs(pos)%cdbdy = merge('MAILx', 'RBDY2', c%cdm(k) == bm_mesh)
+          recs(pos)%anbdy = merge('MAILx', 'RBDY2', c%anm(k) == bm_mesh)
+          recs(pos)%icdbdy = c%cdb(k)
+          recs(pos)%ianbdy = c%anb(k)
+          if (c%cdm(k) == bm_rigid) recs(pos)%icdbdy = sc%bodies%number(c%cdb(k))
+          if (c%anm(k) == bm_rigid) recs(pos)%ianbdy = sc%bodies%number(c%anb(k))
           recs(pos)%icdtac = t%rank(c%cd(k))
           recs(pos)%iantac = t%rank(c%an(k))
           recs(pos)%behav = sc%laws(c%law(k))%nickname
@@ -267,6 +792,8 @@ contains
           recs(pos)%has_geometry = .true.
           if (sc%laws(c%law(k))%kind == law_czm) then
             recs(pos)%internals = c%internals(:, k)
+          else if (c%cdm(k) == bm_mesh .or. c%anm(k) == bm_mesh) then
+            recs(pos)%internals = [c%length(k)]   ! LMGC90 writes the length of contacts with meshes
           else
             allocate (recs(pos)%internals(0))
           end if
@@ -274,7 +801,50 @@ contains
       end do
     end associate
     call write_vloc_rloc_file(o%outbox//'/Vloc_Rloc.OUT.'//trim(num), sc%step, sc%time, recs)
+    call clocked(o, k_outbox, t0)
   end subroutine output_outbox
+
+  !> Gauss-point values of every element as LMGC90 writes them in GPV.OUT:
+  !> small strain, per Gauss point the stress (xx, yy, xy, zz) and the strain
+  !> (xx, yy, 2 xy, zz); J2 elements add a line of six internals, the
+  !> small-strain counterpart of LMGC90's (plastic strain xx, yy, 2 xy, zz
+  !> where LMGC90 writes Cp^-1, then p and the von Mises stress). T3 has one
+  !> Gauss point, printed three times as LMGC90 does.
+  function gpv_records(sc) result(recs)
+    type(scene_t), intent(in) :: sc
+    type(gpv_record_t), allocatable :: recs(:)
+    real(wp), allocatable :: gp(:, :)
+    integer :: b, e, g, ng, np, g0
+    associate (ms => sc%meshes)
+    allocate (gp(size(ms%gp, 1), size(ms%gp, 2)))
+    call mailx_gauss_values(ms, gp)
+    allocate (recs(ms%nelem))
+    do b = 1, ms%n
+      do e = ms%elem_first(b), ms%elem_first(b + 1) - 1
+        associate (r => recs(e))
+          r%body = b
+          r%element = e - ms%elem_first(b) + 1
+          r%kind = el_name(ms%el_kind(e))
+          ng = ms%el_gp(e + 1) - ms%el_gp(e)
+          np = el_ngauss_gpv(ms%el_kind(e))
+          allocate (r%values(merge(14, 8, ms%mats(ms%el_mat(e))%law == bulk_j2), np))
+          do g = 1, np
+            g0 = ms%el_gp(e) + min(g, ng) - 1
+            r%values(1:8, g) = gp(gp_sxx:gp_ezz, g0)
+            if (size(r%values, 1) == 14) r%values(9:14, g) = [gp(gp_pxx:gp_pzz, g0), gp(gp_p, g0), &
+                                                              von_mises(gp(gp_sxx:gp_szz, g0))]
+          end do
+        end associate
+      end do
+    end do
+    end associate
+  end function gpv_records
+
+  !> Von Mises equivalent stress of a stress (xx, yy, xy, zz).
+  pure real(wp) function von_mises(s)
+    real(wp), intent(in) :: s(4)
+    von_mises = sqrt(0.5_wp * ((s(1) - s(2))**2 + (s(2) - s(4))**2 + (s(4) - s(1))**2) + 3.0_wp * s(3)**2)
+  end function von_mises
 
   !> One snapshot of bodies and contacts in OUTBOX/fracas.h5.
   subroutine output_snapshot(o, sc)
@@ -282,39 +852,172 @@ contains
     type(scene_t), intent(in) :: sc
     integer :: n
     real(wp), allocatable :: gap_end(:)
+    real(wp) :: t0
     if (.not. o%h5_open) return
+    call cpu_time(t0)
     n = sc%contacts%n
     associate (c => sc%contacts, t => sc%tactors)
       gap_end = c%gap(1:n) + sc%h * c%u(2, 1:n)
       if (any(sc%laws%kind == law_czm)) then
         call results_write_snapshot(o%h5, sc%step, sc%time, sc%bodies%x, sc%bodies%v, c%inter(1:n), &
-          sc%bodies%number(c%cdb(1:n)), sc%bodies%number(c%anb(1:n)), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
+          c%cdb(1:n), c%anb(1:n), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
           c%status(1:n), c%law(1:n), c%normal(:, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end, &
           internals=c%internals(:, 1:n), broken=broken_flags(sc))
       else
         call results_write_snapshot(o%h5, sc%step, sc%time, sc%bodies%x, sc%bodies%v, c%inter(1:n), &
-          sc%bodies%number(c%cdb(1:n)), sc%bodies%number(c%anb(1:n)), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
+          c%cdb(1:n), c%anb(1:n), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
           c%status(1:n), c%law(1:n), c%normal(:, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end)
       end if
     end associate
+    if (sc%meshes%n > 0) call mesh_snapshot(o, sc)
+    if (sc%cracks%nedges > 0) call cracks_snapshot(o, sc)
+    call clocked(o, k_snapshot, t0)
   end subroutine output_snapshot
+
+  !> Cracks in the newest snapshot (group cracks): the crack paths (vertices
+  !> in the current configuration, segments, crack of each segment, length of
+  !> each crack, longest first), the main crack's origin and tip (reference
+  !> configuration), broken length per interface family (names in
+  !> /mesh/interface_families), and the fragments (fragment of each meshed body).
+  subroutine cracks_snapshot(o, sc)
+    type(output_t), intent(inout) :: o
+    type(scene_t), intent(in) :: sc
+    integer(hid_t) :: g, gc
+    type(crack_paths_t) :: paths
+    real(wp) :: crack, damaged, per_family(sc%cracks%nfamilies)
+    integer :: nbroken, ndamaged, nfrag
+    integer, allocatable :: piece(:)
+    call cracks_paths(sc%cracks, sc%meshes, paths)
+    call cracks_lengths(sc%cracks, crack, damaged, per_family, nbroken, ndamaged)
+    call cracks_fragments(sc%cracks, sc%meshes, piece, nfrag)
+    call results_last_snapshot(o%h5, g)
+    call h5_create_group(g, 'cracks', gc)
+    call h5_write_dataset(gc, 'points', paths%points)
+    call h5_write_dataset(gc, 'segments', int(paths%seg, ik))
+    call h5_write_dataset(gc, 'segment_crack', int(paths%seg_crack, ik))
+    call h5_write_dataset(gc, 'crack_length', paths%crack_length)
+    call h5_write_dataset(gc, 'main_origin', paths%origin)
+    call h5_write_dataset(gc, 'main_tip', paths%tip)
+    call h5_write_dataset(gc, 'broken_length_per_family', per_family)
+    call h5_write_dataset(gc, 'fragment_of_body', int(piece, ik))
+    call h5_write_attr(gc, 'fragments', nfrag)
+    call h5_close_group(gc)
+    call h5_close_group(g)
+  end subroutine cracks_snapshot
+
+  !> The meshed bodies' state in the newest snapshot: nodal displacements and
+  !> velocities (2, nodes), Gauss-point states (13, Gauss points: stress,
+  !> strain, plastic strain, p; see /mesh/gauss_point_fields), and the side
+  !> models of the contacts.
+  subroutine mesh_snapshot(o, sc)
+    type(output_t), intent(inout) :: o
+    type(scene_t), intent(in) :: sc
+    integer(hid_t) :: g
+    real(wp), allocatable :: gp(:, :)
+    allocate (gp(size(sc%meshes%gp, 1), size(sc%meshes%gp, 2)))
+    call mailx_gauss_values(sc%meshes, gp)
+    call results_last_snapshot(o%h5, g)
+    call h5_write_dataset(g, 'mesh_X', sc%meshes%x)
+    call h5_write_dataset(g, 'mesh_V', sc%meshes%v)
+    call h5_write_dataset(g, 'mesh_gauss_points', gp)
+    call h5_write_dataset(g, 'cd_model', int(sc%contacts%cdm(1:sc%contacts%n), ik))
+    call h5_write_dataset(g, 'an_model', int(sc%contacts%anm(1:sc%contacts%n), ik))
+    call h5_close_group(g)
+  end subroutine mesh_snapshot
+
+  !> Names separated by blanks.
+  pure function join(names) result(s)
+    character(len=*), intent(in) :: names(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ''
+    do i = 1, size(names)
+      s = s//trim(names(i))
+      if (i < size(names)) s = s//' '
+    end do
+  end function join
+
+  !> The meshes' fixed description in /mesh: reference node coordinates,
+  !> node and element ranges of each body, element kinds (VTK cell types),
+  !> connectivity (1-based mesh node numbers), materials.
+  subroutine mesh_static(o, sc)
+    type(output_t), intent(inout) :: o
+    type(scene_t), intent(in) :: sc
+    integer(hid_t) :: g
+    integer :: e
+    integer(ik), allocatable :: vtk(:)
+    associate (m => sc%meshes)
+      allocate (vtk(m%nelem))
+      do e = 1, m%nelem
+        vtk(e) = int(el_vtk_type(m%el_kind(e)), ik)
+      end do
+      call results_group(o%h5, 'mesh', g)
+      call h5_write_attr(g, 'plane', merge('stress', 'strain', m%plane == plane_stress))
+      call h5_write_attr(g, 'gauss_point_fields', 'sxx syy sxy szz exx eyy gxy ezz pxx pyy pgxy pzz p')
+      call h5_write_dataset(g, 'reference', m%ref)
+      call h5_write_dataset(g, 'body_first_node', int(m%node_first, ik))
+      call h5_write_dataset(g, 'body_first_element', int(m%elem_first, ik))
+      call h5_write_dataset(g, 'element_vtk_type', vtk)
+      call h5_write_dataset(g, 'element_first_node', int(m%el_first, ik))
+      call h5_write_dataset(g, 'element_nodes', int(m%el_nodes, ik))
+      call h5_write_dataset(g, 'element_first_gauss_point', int(m%el_gp, ik))
+      call h5_write_dataset(g, 'element_material', int(m%el_mat, ik))
+      if (sc%cracks%nfamilies > 0) call h5_write_attr(g, 'interface_families', join(sc%cracks%family_names))
+      call h5_close_group(g)
+    end associate
+  end subroutine mesh_static
 
   !> One row of the per-step series (same order as series_names).
   subroutine output_series(o, sc, rep)
     type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
     type(step_report_t), intent(in) :: rep
-    real(wp) :: balance
+    real(wp) :: balance, wgrav, wforces, wsupports, crack, damaged
+    real(wp) :: per_family(sc%cracks%nfamilies)
+    integer :: nbroken, ndamaged
+    real(wp) :: t0
     if (.not. o%h5_open) return
-    balance = rep%kinetic + sc%cohesive_energy - sc%kinetic0 - &
-              (sc%work_gravity + sc%work_forces + sc%work_supports - sc%dissipated)
+    call cpu_time(t0)
+    call cracks_lengths(sc%cracks, crack, damaged, per_family, nbroken, ndamaged)
+    ! Rigid and meshed bodies together (kinetic0 holds the initial kinetic and
+    ! elastic energy; meshes add their strain energy and plastic work).
+    wgrav = sc%work_gravity + sc%meshes%work_gravity
+    wforces = sc%work_forces + sc%meshes%work_forces
+    wsupports = sc%work_supports + sc%meshes%work_supports
+    balance = rep%kinetic + sc%meshes%elastic + sc%meshes%plastic_work + sc%cohesive_energy - sc%kinetic0 - &
+              (wgrav + wforces + wsupports - sc%dissipated)
     call results_append_step(o%h5, [real(sc%step, wp), sc%time, real(rep%contacts, wp), &
       real(rep%nlgs%nactive, wp), real(rep%nlgs%sweeps, wp), merge(1.0_wp, 0.0_wp, rep%nlgs%converged), &
       rep%nlgs%residual, rep%nlgs%residual_onepq, rep%nlgs%quad_dv, rep%nlgs%maxm_dv, rep%nlgs%mean_dvor, &
-      rep%kinetic, sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, sc%cohesive_energy, &
+      rep%kinetic, wgrav, wforces, wsupports, sc%dissipated, sc%cohesive_energy, &
       sc%damage_dissipated, balance, &
-      rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds])
+      rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
+      sc%meshes%plastic_work, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
+      real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds])
+    call postpro_step(o%pp, sc, rep)
+    call flush_if_due(o)
+    call clocked(o, k_series, t0)
   end subroutine output_series
+
+  !> Flush the POSTPRO files every flush_interval seconds (fracas.h5 keeps its own clock).
+  subroutine flush_if_due(o)
+    type(output_t), intent(inout) :: o
+    integer(i8) :: now, rate
+    call system_clock(now, rate)
+    if (rate <= 0) return
+    if (real(now - o%last_flush, wp) <= flush_interval * real(rate, wp)) return
+    call postpro_flush(o%pp)
+    o%last_flush = now
+  end subroutine flush_if_due
+
+  !> Make everything written so far readable on disk (fracas.h5 flushed,
+  !> POSTPRO lines handed to the system); the run goes on.
+  subroutine output_flush(o)
+    type(output_t), intent(inout) :: o
+    if (o%h5_open) call results_flush(o%h5)
+    call postpro_flush(o%pp)
+    call system_clock(o%last_flush)
+  end subroutine output_flush
 
   !> 1 for the contacts of a cohesive law whose interface is broken (beta = 0).
   function broken_flags(sc) result(f)
@@ -329,12 +1032,14 @@ contains
     end do
   end function broken_flags
 
-  !> Close the results; complete = .false. for a run stopped on an error
-  !> (fracas.h5 then keeps complete = 0).
-  subroutine output_close(o, complete)
+  !> Close every output. complete = .false.: the run stopped before its end
+  !> (fracas.h5 keeps complete = 0; end_reason, if given, says why).
+  subroutine output_close(o, complete, end_reason)
     type(output_t), intent(inout) :: o
     logical, intent(in), optional :: complete
-    if (o%h5_open) call results_close(o%h5, complete)
+    character(len=*), intent(in), optional :: end_reason
+    if (o%h5_open) call results_close(o%h5, complete, end_reason)
     o%h5_open = .false.
+    call postpro_close(o%pp)
   end subroutine output_close
 end module fracas_output

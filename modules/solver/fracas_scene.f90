@@ -6,9 +6,13 @@ module fracas_scene
   use fracas_kinds, only: wp, i8
   use fracas_deck, only: deck_t, body_input_t
   use fracas_errors, only: input_error
-  use fracas_ids, only: inter_id, status_id
+  use fracas_ids, only: inter_id, status_id, bm_rigid, bm_mesh
   use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
-                          rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy, drive_value
+                          rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
+  use fracas_drives, only: drive_value
+  use fracas_mailx, only: mailx_t, mailx_build, mailx_begin_step, mailx_detection_coor, mailx_converged, &
+                          mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint
+  use fracas_cracks, only: cracks_t, cracks_init, cracks_update
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
   use fracas_contact_laws, only: law_t, law_from_input, law_czm
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
@@ -30,23 +34,36 @@ module fracas_scene
     real(wp) :: mean_overlap = 0.0_wp, max_overlap = 0.0_wp
     integer :: late_contacts = 0         !< new contacts already overlapping when first detected
     real(wp) :: late_overlap = 0.0_wp    !< their largest overlap
-    real(wp) :: solve_seconds = 0.0_wp   !< wall time of the contact solve
-    real(wp) :: step_seconds = 0.0_wp    !< wall time of the whole step
+    ! Wall time of the step and of its parts (doc/benchmarks.md):
+    real(wp) :: bodies_seconds = 0.0_wp  !< free velocities (meshes: residual, factorizations, Newton)
+    real(wp) :: detect_seconds = 0.0_wp  !< contact detection and history
+    real(wp) :: prepare_seconds = 0.0_wp !< Delassus blocks (meshes: compliance, G blocks) and laws
+    real(wp) :: solve_seconds = 0.0_wp   !< NLGS sweeps
+    real(wp) :: step_seconds = 0.0_wp    !< the whole step
+    integer :: newton_iterations = 0     !< meshed bodies: Newton iterations of the step
+    logical :: newton_converged = .true. !< ... and whether their loop converged
   end type step_report_t
 
   type :: scene_t
     real(wp) :: h = 0.0_wp, theta = 0.5_wp, time = 0.0_wp
     integer :: step = 0, steps_done = 0, detection_frequency = 1
-    type(rbdy2_t) :: bodies
+    type(rbdy2_t) :: bodies                  !< rigid bodies (RBDY2)
+    type(mailx_t) :: meshes                  !< meshed bodies (MAILx); n = 0 in a rigid scene
+    real(wp) :: newton_tolerance = 1.0e-6_wp
+    integer :: newton_max_iterations = 20
+    logical :: detection_approach = .true.
     type(tactors_t) :: tactors
+    type(cracks_t) :: cracks                 !< cohesive interfaces of meshes (none without)
     type(law_t), allocatable :: laws(:)
     type(detection_t) :: det
     type(contacts_t) :: contacts
     type(history_t) :: hist
     type(nlgs_t) :: solver
-    integer, allocatable :: first_tactor(:)  !< first contactor of each body
+    integer, allocatable :: first_tactor(:)  !< first contactor of each body, in deck order
+    integer, allocatable :: rigid_deck(:), mesh_deck(:)  !< deck index of each rigid / meshed body
     logical, allocatable :: movable(:)
-    real(wp), allocatable :: q(:, :)         !< detection configuration of the step
+    real(wp), allocatable :: q(:, :)         !< detection configuration of the step (rigid bodies)
+    real(wp), allocatable :: xn(:, :)        !< detection configuration of the mesh nodes
     ! Energy audit, accumulated over the run (J per unit thickness).
     real(wp) :: kinetic0 = 0.0_wp, work_gravity = 0.0_wp, work_forces = 0.0_wp
     real(wp) :: work_supports = 0.0_wp, dissipated = 0.0_wp
@@ -74,14 +91,19 @@ contains
     sc%h = deck%run%time_step
     sc%theta = deck%run%theta
     sc%detection_frequency = max(1, deck%run%detection_frequency)
-    nb = size(deck%bodies)
+    sc%newton_tolerance = deck%run%newton_tolerance
+    sc%newton_max_iterations = deck%run%newton_max_iterations
+    sc%detection_approach = deck%run%detection_approach
     bodies = deck%bodies
+    sc%rigid_deck = pack([(ib, ib=1, size(bodies))], bodies%model /= 'MAILx')
+    sc%mesh_deck = pack([(ib, ib=1, size(bodies))], bodies%model == 'MAILx')
+    nb = size(sc%rigid_deck)
     do ib = 1, nb
-      call polygons_to_centroid(bodies(ib))
+      call polygons_to_centroid(bodies(sc%rigid_deck(ib)))
     end do
     allocate (number(nb), ref(3, nb), mass(nb), inertia(nb), avrd(nb))
     do ib = 1, nb
-      associate (bd => bodies(ib))
+      associate (bd => bodies(sc%rigid_deck(ib)))
         density = -1.0_wp
         do im = 1, size(deck%materials)
           if (deck%materials(im)%nickname == bd%behav) density = deck%materials(im)%density
@@ -102,11 +124,13 @@ contains
       end associate
     end do
     call rbdy2_init(sc%bodies, number, ref, mass, inertia, avrd, deck%gravity(1:2))
+    sc%bodies%driven_start_imposed = deck%run%driven_start == 'imposed'
     do k = 1, size(deck%driven)
-      call rbdy2_add_drive(sc%bodies, deck%driven(k))
+      if (deck%driven(k)%model /= 'MAILx') call rbdy2_add_drive(sc%bodies, deck%driven(k))
     end do
     do k = 1, size(deck%dof_ini)
       associate (d => deck%dof_ini(k))
+        if (d%model == 'MAILx') cycle
         if (d%body < 1 .or. d%body > nb) call input_error(d%src%file, d%src%line, 9, &
           'body number out of range')
         sc%bodies%xbegin(:, d%body) = d%x
@@ -119,6 +143,10 @@ contains
     sc%step = deck%dof_step
     sc%movable = .not. sc%bodies%clamped
     sc%kinetic0 = rbdy2_kinetic_energy(sc%bodies)
+    ! Meshed bodies (none in a rigid scene: empty arrays, no finite-element work).
+    call mailx_build(deck, sc%meshes, sc%h, sc%theta)
+    sc%kinetic0 = sc%kinetic0 + sc%meshes%kinetic0 + sc%meshes%elastic
+    allocate (sc%xn(2, sc%meshes%nnodes))
 
     allocate (sc%laws(size(deck%laws)), nick(size(deck%laws)))
     do k = 1, size(deck%laws)
@@ -126,14 +154,17 @@ contains
       nick(k) = deck%laws(k)%nickname
     end do
     call tactors_build(bodies, sc%tactors)
-    allocate (sc%first_tactor(nb + 1))
-    sc%first_tactor = sc%tactors%n + 1
-    do k = sc%tactors%n, 1, -1
-      sc%first_tactor(sc%tactors%body(k)) = k
+    ! First contactor of each body in deck order (contactors are listed in that order).
+    allocate (sc%first_tactor(size(bodies) + 1))
+    k = 1
+    do ib = 1, size(bodies)
+      sc%first_tactor(ib) = k
+      if (allocated(bodies(ib)%tactors)) k = k + size(bodies(ib)%tactors)
     end do
-    do ib = nb, 1, -1
-      sc%first_tactor(ib) = min(sc%first_tactor(ib), sc%first_tactor(ib + 1))
-    end do
+    sc%first_tactor(size(bodies) + 1) = k
+    sc%contacts%with_mesh = sc%meshes%n > 0
+    if (sc%meshes%n > 0) call mailx_set_contact_hint(sc%meshes, sc%tactors%nodes)
+    call cracks_init(sc%cracks, sc%tactors, sc%meshes)
     call detection_init(sc%det, sc%tactors, deck%see_rules, nick)
     allocate (sc%q(3, nb))
 
@@ -143,8 +174,8 @@ contains
       associate (r => deck%vloc_ini(k))
         j = inter_id(r%inter)
         if (j == 0) cycle   ! a type this build does not treat: nothing to warm start
-        cd = [cd, tactor_of(r%icdbdy, r%icdtac)]
-        an = [an, tactor_of(r%ianbdy, r%iantac)]
+        cd = [cd, tactor_of(r%cdbdy, r%icdbdy, r%icdtac)]
+        an = [an, tactor_of(r%anbdy, r%ianbdy, r%iantac)]
         sub = [sub, r%cdver]
         inter = [inter, j]
         pos = status_id(r%status)
@@ -174,17 +205,28 @@ contains
     ns%max_checks = deck%run%nlgs_max_checks
     ns%order = deck%run%nlgs_order
     ns%seed = deck%run%nlgs_seed
+    ns%check_pass = deck%run%nlgs_check_pass
     call nlgs_init(sc%solver, ns)
 
   contains
 
-    integer function tactor_of(ibody, rank)
+    !> Contactor of rank `rank` on body `ibody` of model `model` (numbered within its model).
+    integer function tactor_of(model, ibody, rank)
+      character(len=*), intent(in) :: model
       integer, intent(in) :: ibody, rank
+      integer :: ideck
       associate (r => deck%vloc_ini(k))
-        if (ibody < 1 .or. ibody > nb) call input_error(r%src%file, r%src%line, 9, &
-          'body number out of range in Vloc_Rloc.INI')
-        tactor_of = sc%first_tactor(ibody) + rank - 1
-        if (rank < 1 .or. tactor_of >= sc%first_tactor(ibody + 1)) call input_error(r%src%file, &
+        if (model == 'MAILx') then
+          if (ibody < 1 .or. ibody > size(sc%mesh_deck)) call input_error(r%src%file, r%src%line, 9, &
+            'MAILx body number out of range in Vloc_Rloc.INI')
+          ideck = sc%mesh_deck(ibody)
+        else
+          if (ibody < 1 .or. ibody > nb) call input_error(r%src%file, r%src%line, 9, &
+            'body number out of range in Vloc_Rloc.INI')
+          ideck = sc%rigid_deck(ibody)
+        end if
+        tactor_of = sc%first_tactor(ideck) + rank - 1
+        if (rank < 1 .or. tactor_of >= sc%first_tactor(ideck + 1)) call input_error(r%src%file, &
           r%src%line, 23, 'contactor number out of range in Vloc_Rloc.INI')
       end associate
     end function tactor_of
@@ -223,23 +265,38 @@ contains
     logical :: pair_known, swapped
     integer(i8) :: t0, t1, t2, rate
     real(wp) :: margin, vmax, gap_end, dx(3), stored, coh_work, released, dissipated_all
+    type(nlgs_report_t) :: newton_rep
     call system_clock(t0, rate)
-    associate (b => sc%bodies, c => sc%contacts)
+    t1 = t0
+    associate (b => sc%bodies, c => sc%contacts, m => sc%meshes)
       call rbdy2_begin_step(b, sc%time, sc%h, sc%theta)
       call rbdy2_detection_coor(b, sc%h, sc%theta, sc%q)
-      if (mod(sc%steps_done, sc%detection_frequency) == 0) then
-        ! Between rough detections bodies move at most about vmax h per step.
-        margin = 0.0_wp
-        if (sc%detection_frequency > 1) then
-          vmax = 0.0_wp
-          do k = 1, b%n
-            vmax = max(vmax, norm2(b%vbegin(1:2, k)) + abs(b%vbegin(3, k)) * b%avrd(k))
-          end do
-          margin = 2.0_wp * vmax * sc%h * sc%detection_frequency
-        end if
-        call detect_rough(sc%det, sc%tactors, sc%q, sc%movable, margin)
+      if (m%n > 0) then
+        call mailx_begin_step(m, sc%time)
+        call mailx_detection_coor(m, sc%xn)
       end if
-      call detect_fine(sc%det, sc%tactors, sc%q, c)
+      call lap(rep%bodies_seconds)
+      if (mod(sc%steps_done, sc%detection_frequency) == 0) then
+        ! Between rough detections bodies move at most about vmax h per step,
+        ! and a pair closes by at most 2 vmax h within a step.
+        vmax = 0.0_wp
+        do k = 1, b%n
+          vmax = max(vmax, norm2(b%vfree(1:2, k)) + abs(b%vfree(3, k)) * b%avrd(k), &
+                     norm2(b%vbegin(1:2, k)) + abs(b%vbegin(3, k)) * b%avrd(k))
+        end do
+        if (m%nnodes > 0) vmax = max(vmax, maxval(norm2(m%vfree, dim=1)), maxval(norm2(m%vbegin, dim=1)))
+        margin = 2.0_wp * vmax * sc%h * sc%detection_frequency
+        if (m%n > 0) then
+          call detect_rough(sc%det, sc%tactors, sc%q, sc%movable, margin, sc%xn, m%movable)
+        else
+          call detect_rough(sc%det, sc%tactors, sc%q, sc%movable, margin)
+        end if
+      end if
+      if (sc%detection_approach) then
+        call detect_fine(sc%det, sc%tactors, sc%q, c, sc%xn, b%vfree, m%vfree, sc%h)
+      else
+        call detect_fine(sc%det, sc%tactors, sc%q, c, sc%xn)
+      end if
       do k = 1, c%n
         pair_known = .false.
         swapped = .false.
@@ -270,12 +327,28 @@ contains
                                                     merge(1.0_wp, 0.0_wp, sc%step == 0), -99.0_wp]
         end if
       end do
-      call nlgs_prepare(c, b, sc%laws, sc%h)
-      call system_clock(t1)
-      call nlgs_solve(sc%solver, c, b, rep%nlgs)
-      call system_clock(t2)
-      rep%solve_seconds = real(t2 - t1, wp) / real(rate, wp)
+      call lap(rep%detect_seconds)
+      call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h)
+      call lap(rep%prepare_seconds)
+      call nlgs_solve(sc%solver, c, b, m, rep%nlgs)
+      call lap(rep%solve_seconds)
+      ! Nonlinear meshed bodies: Newton iterations, the contact problem solved
+      ! in each (warm-started from the last), as LMGC90.
+      do
+        if (mailx_converged(m, sc%newton_tolerance, sc%newton_max_iterations)) exit
+        call lap(rep%bodies_seconds)
+        b%v = b%vfree
+        call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h)
+        call lap(rep%prepare_seconds)
+        call nlgs_solve(sc%solver, c, b, m, newton_rep)
+        call lap(rep%solve_seconds)
+        rep%nlgs%sweeps = rep%nlgs%sweeps + newton_rep%sweeps
+      end do
+      call lap(rep%bodies_seconds)
+      rep%newton_iterations = m%iterations
+      rep%newton_converged = m%newton_converged
       call nlgs_update_cohesive(c, sc%laws, sc%h, sc%time + sc%h, stored, coh_work, released)
+      call cracks_update(sc%cracks, c, sc%laws, sc%steps_done == 0, sc%step + 1)
 
       ! Energy audit of the step (before the begin state is overwritten).
       do k = 1, b%n
@@ -314,15 +387,27 @@ contains
       sc%cohesive_energy = stored
 
       call rbdy2_end_step(b, sc%h, sc%theta)
+      if (m%n > 0) call mailx_end_step(m)
       call history_from_contacts(sc%hist, c, sc%tactors%n, sc%h)
       sc%time = sc%time + sc%h
       sc%step = sc%step + 1
       sc%steps_done = sc%steps_done + 1
       rep%contacts = c%n
       rep%kinetic = rbdy2_kinetic_energy(b)
+      if (m%n > 0) rep%kinetic = rep%kinetic + mailx_kinetic_energy(m)
     end associate
     call system_clock(t2)
     rep%step_seconds = real(t2 - t0, wp) / real(rate, wp)
+
+  contains
+
+    !> Add the wall time since the last lap to acc.
+    subroutine lap(acc)
+      real(wp), intent(inout) :: acc
+      call system_clock(t2)
+      acc = acc + real(t2 - t1, wp) / real(rate, wp)
+      t1 = t2
+    end subroutine lap
   end subroutine scene_step
 
   !> Work done on the free bodies by velocity-driven dofs through the contacts
@@ -348,10 +433,14 @@ contains
         rt = c%r(1, k); rn = c%r(2, k)
         p(1) = rt * c%normal(2, k) + rn * c%normal(1, k)
         p(2) = -rt * c%normal(1, k) + rn * c%normal(2, k)
-        imp(1:2, a) = imp(1:2, a) + p
-        imp(3, a) = imp(3, a) + rt * c%lever(1, k) + rn * c%lever(2, k)
-        imp(1:2, o) = imp(1:2, o) - p
-        imp(3, o) = imp(3, o) - (rt * c%lever(3, k) + rn * c%lever(4, k))
+        if (c%cdm(k) == bm_rigid) then
+          imp(1:2, a) = imp(1:2, a) + p
+          imp(3, a) = imp(3, a) + rt * c%lever(1, k) + rn * c%lever(2, k)
+        end if
+        if (c%anm(k) == bm_rigid) then
+          imp(1:2, o) = imp(1:2, o) - p
+          imp(3, o) = imp(3, o) - (rt * c%lever(3, k) + rn * c%lever(4, k))
+        end if
       end do
     end associate
   end subroutine scene_body_impulses

@@ -19,7 +19,8 @@ module fracas_state_guard
   use fracas_deck, only: deck_t, source_t
   use fracas_errors, only: input_error
   use fracas_ids, only: inter_names
-  use fracas_rbdy2, only: drive_value, rbdy2_kinetic_energy
+  use fracas_drives, only: drive_value
+  use fracas_rbdy2, only: rbdy2_kinetic_energy
   use fracas_scene, only: scene_t
   use fracas_strings, only: itoa, rtoa
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -150,7 +151,7 @@ contains
     subroutine check_alert(k)
       integer, intent(in) :: k
       real(wp) :: lim
-      if (sc%tactors%n == 0) return
+      if (.not. any(sc%tactors%bound > 0.0_wp)) return   ! meshes only: sizes known at detection
       lim = resolvable_length(maxval(sc%tactors%bound))
       associate (r => deck%see_rules(k))
         if (.not. (max(r%alert, r%global_alert) <= lim)) call input_error(r%src%file, r%src%line, 55, &
@@ -163,9 +164,10 @@ contains
     !> within what double precision resolves at the size of the smallest.
     subroutine check_sizes()
       integer :: kmax, kmin, ib, it
-      if (sc%tactors%n < 2) return
+      ! Mesh contactors (bound 0) take their size from their elements, checked with the mesh.
+      if (count(sc%tactors%bound > 0.0_wp) < 2) return
       kmax = maxloc(sc%tactors%bound, 1)
-      kmin = minloc(sc%tactors%bound, 1)
+      kmin = minloc(sc%tactors%bound, 1, mask=sc%tactors%bound > 0.0_wp)
       if (sc%tactors%bound(kmax) <= resolvable_length(sc%tactors%bound(kmin))) return
       ib = sc%tactors%body(kmax)
       it = sc%tactors%rank(kmax)

@@ -5,9 +5,10 @@
 !>   make_sample_results OUTDIR [--overwrite] [--incomplete]
 !>
 !> OUTDIR/fracas.h5           results file (3 bodies, 4 series rows, 2 snapshots)
-!> OUTDIR/bodies_000001.vtu   3 disks as 16-gon outlines (base64 binary)
+!> OUTDIR/disks_000001.vtu    3 disks as points with a radius (appended, zlib)
+!> OUTDIR/shapes_000001.vtu   the same 3 disks as filled 16-gons (appended, raw)
 !> OUTDIR/contacts_000001.vtu 2 contact points as vertices (ASCII)
-!> OUTDIR/fracas.pvd          the collection listing both at one time
+!> OUTDIR/fracas.pvd          the collection listing the three at one time
 !> --overwrite  replace an existing fracas.h5 (without it, an existing file is fatal)
 !> --incomplete leave fracas.h5 without results_close (complete stays 0)
 program make_sample_results
@@ -17,7 +18,8 @@ program make_sample_results
   use fracas_ids, only: status_names, inter_names
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_flush, results_close
-  use fracas_vtk, only: vtk_field, write_vtu, pvd_t, pvd_init, pvd_add, vtk_polygon, vtk_vertex
+  use fracas_vtk, only: vtu_t, vtu_begin, vtu_points, vtu_cells, vtu_vertex_cells, vtu_point_data, vtu_cell_data, &
+                        vtu_end, pvd_t, pvd_init, pvd_add, vtk_polygon
   implicit none
 
   integer, parameter :: nb = 3, nc = 2, nseg = 16
@@ -26,11 +28,12 @@ program make_sample_results
   logical :: overwrite, incomplete
   type(results_h5_t) :: r
   type(pvd_t) :: pvd
+  type(vtu_t) :: w
   character(len=20), parameter :: cols(6) = [character(len=20) :: 'step', 'time', 'contacts', 'sweeps', &
                                               'converged', 'kinetic_energy']
   real(wp) :: ref(3, nb), X(3, nb), V(3, nb), radius(nb), mass(nb), inertia(nb)
   real(wp) :: normal(2, nc), point(2, nc), reaction(2, nc), velocity(2, nc), gap(nc), internals(3, nc)
-  real(wp) :: pts(3, nb*nseg), cvel(3, nb), rot(nb), spin(nb), rglob(3, nc), pc(3, nc), nglob(3, nc)
+  real(wp) :: pts(3, nb*nseg), cvel(3, nb), rot(nb), spin(nb), rglob(3, nc), pc(3, nc), nglob(3, nc), centres(2, nb)
   integer(ik) :: conn(nb*nseg), offs(nb), types(nb), ids(nb)
   integer :: i, k, step
 
@@ -102,9 +105,24 @@ program make_sample_results
     rot(i) = X(3, i)
     spin(i) = V(3, i)
   end do
-  call write_vtu(dir//'/bodies_000001.vtu', pts, conn, offs, types, &
-                 cell_fields=[vtk_field('velocity', cvel), vtk_field('rotation', rot), vtk_field('spin', spin), &
-                              vtk_field('id', ids)], time=4.0e-3_wp)
+  centres = ref(1:2, :) + X(1:2, :)
+  call vtu_begin(w, dir//'/disks_000001.vtu', nb, nb, time=4.0e-3_wp)
+  call vtu_points(w, centres)
+  call vtu_vertex_cells(w)
+  call vtu_point_data(w, 'radius', radius)
+  call vtu_point_data(w, 'body', ids)
+  call vtu_point_data(w, 'velocity', cvel)
+  call vtu_point_data(w, 'rotation', rot)
+  call vtu_point_data(w, 'spin', spin)
+  call vtu_end(w)
+  call vtu_begin(w, dir//'/shapes_000001.vtu', nb*nseg, nb, time=4.0e-3_wp, encoding='raw')
+  call vtu_points(w, pts)
+  call vtu_cells(w, conn, offs, types)
+  call vtu_cell_data(w, 'body', ids)
+  call vtu_cell_data(w, 'velocity', cvel)
+  call vtu_cell_data(w, 'rotation', rot)
+  call vtu_cell_data(w, 'spin', spin)
+  call vtu_end(w)
   do i = 1, nc
     pc(:, i) = [point(1, i), point(2, i), 0.0_wp]
     nglob(:, i) = [normal(1, i), normal(2, i), 0.0_wp]
@@ -112,12 +130,18 @@ program make_sample_results
     rglob(:, i) = [reaction(1, i)*normal(2, i) + reaction(2, i)*normal(1, i), &
                    -reaction(1, i)*normal(1, i) + reaction(2, i)*normal(2, i), 0.0_wp]
   end do
-  call write_vtu(dir//'/contacts_000001.vtu', pc, [0_ik, 1_ik], [1_ik, 2_ik], [vtk_vertex, vtk_vertex], &
-                 cell_fields=[vtk_field('normal', nglob), vtk_field('reaction', rglob), &
-                              vtk_field('rn', reaction(2, :)), vtk_field('rt', reaction(1, :)), &
-                              vtk_field('status', [2_ik, 3_ik]), vtk_field('gap', gap)], &
-                 ascii=.true., time=4.0e-3_wp)
+  call vtu_begin(w, dir//'/contacts_000001.vtu', nc, nc, time=4.0e-3_wp, encoding='ascii')
+  call vtu_points(w, pc)
+  call vtu_vertex_cells(w)
+  call vtu_point_data(w, 'normal', nglob)
+  call vtu_point_data(w, 'reaction', rglob)
+  call vtu_point_data(w, 'rn', reaction(2, :))
+  call vtu_point_data(w, 'rt', reaction(1, :))
+  call vtu_point_data(w, 'status', [2_ik, 3_ik])
+  call vtu_point_data(w, 'gap', gap)
+  call vtu_end(w)
   call pvd_init(pvd, dir//'/fracas.pvd')
-  call pvd_add(pvd, 4.0e-3_wp, 'bodies_000001.vtu', part=0)
-  call pvd_add(pvd, 4.0e-3_wp, 'contacts_000001.vtu', part=1)
+  call pvd_add(pvd, 4.0e-3_wp, 'disks_000001.vtu', part=0)
+  call pvd_add(pvd, 4.0e-3_wp, 'shapes_000001.vtu', part=1)
+  call pvd_add(pvd, 4.0e-3_wp, 'contacts_000001.vtu', part=2)
 end program make_sample_results

@@ -1,20 +1,30 @@
-!> fracas_vtk and fracas_files: write small .vtu files (ASCII and base64 binary)
-!> and a .pvd, read them back and check structure and numbers; time a 1e5-cell file.
-!> Files go to a directory next to the test executable (the build tree).
+!> fracas_vtk and fracas_files: write small .vtu files in the three encodings
+!> (ascii, appended raw, appended zlib) and a .pvd, read them back and check
+!> structure and numbers (reference: the arrays written); the cell helpers
+!> (fixed-size cells, vertex cells); Float32 output; a 1e5-point file in time;
+!> and memory: 200 frames of 1e4 points must not grow the resident set by more
+!> than 4 MB (each frame holds 0.6 MB of data: a leak of one frame's arrays would
+!> add 100 MB; a planted leak of the points alone, 0.24 MB a frame, fails it).
+!> Files go to a directory next to the test executable.
 program test_vtk
-  use, intrinsic :: iso_fortran_env, only: int8, int32, int64
+  use, intrinsic :: iso_fortran_env, only: int8, int32, int64, real32
   use fracas_kinds, only: wp, ik, i8
   use fracas_testing, only: check_close, check_true, test_finish
-  use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, atomic_rename
-  use fracas_vtk, only: vtk_field_t, vtk_field, write_vtu, pvd_t, pvd_init, pvd_add, pvd_free, &
-                        vtk_vertex, vtk_line, vtk_poly_line, vtk_polygon
+  use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, atomic_rename, list_dir, name_t
+  use fracas_vtk, only: vtu_t, vtu_begin, vtu_points, vtu_cells, vtu_cells_fixed, vtu_vertex_cells, &
+                        vtu_point_data, vtu_cell_data, vtu_field_data, vtu_end, zlib_uncompress, &
+                        pvd_t, pvd_init, pvd_add, pvd_free, vtk_vertex, vtk_line, vtk_poly_line, vtk_polygon, &
+                        vtk_triangle
   implicit none
 
   character(len=:), allocatable :: dir, txt
+  character(len=5), parameter :: encodings(3) = [character(len=5) :: 'ascii', 'raw', 'zlib']
   real(wp) :: pts(3, 6), vel(3, 6), gap(4)
   integer(ik) :: conn(10), offs(4), types(4), ids(6), status(4)
   type(pvd_t) :: pvd
-  integer :: k, ios, u
+  type(vtu_t) :: w
+  type(name_t), allocatable :: names(:)
+  integer :: k, ios, u, e
 
   dir = out_dir()//'test_vtk_out'
   call make_dir(dir, parents=.true.)
@@ -24,18 +34,23 @@ program test_vtk
   call check_true('make_dir parents', dir_exists(dir//'/a/b/c'))
   call check_true('dir_exists false on a file name', .not. dir_exists(dir//'/nothing_here'))
 
-  ! fracas_files: rename and remove
+  ! fracas_files: rename, remove, list
   open (newunit=u, file=dir//'/x.part', status='replace', action='write', iostat=ios)
   write (u, '(a)') 'hello'
   close (u)
   call atomic_rename(dir//'/x.part', dir//'/x.txt')
   call check_true('atomic_rename: target exists', file_exists(dir//'/x.txt'))
   call check_true('atomic_rename: source gone', .not. file_exists(dir//'/x.part'))
+  call list_dir(dir, names)
+  call check_true('list_dir sees x.txt and a/', has_name(names, 'x.txt') .and. has_name(names, 'a') &
+                  .and. .not. has_name(names, '.') .and. .not. has_name(names, '..'))
   call remove_file(dir//'/x.txt')
   call check_true('remove_file', .not. file_exists(dir//'/x.txt'))
   call remove_file(dir//'/x.txt')   ! missing: fine
   call atomic_rename(dir//'/missing', dir//'/y', stat=ios)
   call check_true('atomic_rename of a missing file reports failure', ios /= 0)
+  call list_dir(dir//'/nothing_here', names)
+  call check_true('list_dir of a missing folder is empty', size(names) == 0)
 
   ! a grid: a square polygon (0-3), a line (3-4), a poly-line (0,4,5), a vertex (5)
   pts = reshape([0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, &
@@ -48,51 +63,65 @@ program test_vtk
     ids(k) = 100 + k
   end do
   gap = [1.5e-3_wp, -2.0e-7_wp, 0.0_wp, 123.456_wp]
-  status = [1, 2, 3, 9]
+  status = [1, 2, 3, 200]
 
-  do k = 1, 2
-    call write_vtu(dir//'/grid_'//trim(merge('ascii ', 'binary', k == 1))//'.vtu', pts, conn, offs, types, &
-                   point_fields=[vtk_field('velocity', vel), vtk_field('id', ids)], &
-                   cell_fields=[vtk_field('gap', gap), vtk_field('status', status)], &
-                   ascii=(k == 1), time=0.75_wp)
+  do e = 1, 3
+    call vtu_begin(w, dir//'/grid_'//trim(encodings(e))//'.vtu', 6, 4, time=0.75_wp, encoding=trim(encodings(e)))
+    call vtu_points(w, pts)
+    call vtu_cells(w, conn, offs, types)
+    call vtu_point_data(w, 'velocity', vel)
+    call vtu_point_data(w, 'id', ids)
+    call vtu_cell_data(w, 'gap', gap)
+    call vtu_cell_data(w, 'status', status)
+    call vtu_end(w)
+    call check_true(trim(encodings(e))//': no .part file left', &
+                    .not. file_exists(dir//'/grid_'//trim(encodings(e))//'.vtu.part'))
+    txt = slurp(dir//'/grid_'//trim(encodings(e))//'.vtu')
+    call check_xml_frame(trim(encodings(e)), txt)
+    call check_reals(trim(encodings(e))//' Points', reals(txt, 'Points', 18), reshape(pts, [18]))
+    call check_reals(trim(encodings(e))//' velocity', reals(txt, 'velocity', 18), reshape(vel, [18]))
+    call check_reals(trim(encodings(e))//' gap', reals(txt, 'gap', 4), gap)
+    call check_reals(trim(encodings(e))//' TimeValue', reals(txt, 'TimeValue', 1), [0.75_wp])
+    call check_ints(trim(encodings(e))//' id', ints32(txt, 'id', 6), ids)
+    call check_ints(trim(encodings(e))//' status', ints32(txt, 'status', 4), status)
+    call check_ints(trim(encodings(e))//' connectivity', int(ints64(txt, 'connectivity', 10), ik), conn)
+    call check_ints(trim(encodings(e))//' offsets', int(ints64(txt, 'offsets', 4), ik), offs)
+    call check_ints(trim(encodings(e))//' types', uints8(txt, 'types', 4), types)
+    call check_true(trim(encodings(e))//': Int32 type for integer fields', index(txt, '<DataArray type="Int32" Name="id"') > 0)
+    call check_true(trim(encodings(e))//': Float64 vectors have 3 components', &
+                    index(txt, '<DataArray type="Float64" Name="velocity" NumberOfComponents="3"') > 0)
   end do
-  call check_true('no .part file left', .not. file_exists(dir//'/grid_ascii.vtu.part'))
+  txt = slurp(dir//'/grid_zlib.vtu')
+  call check_true('zlib: compressor named', index(txt, 'compressor="vtkZLibDataCompressor"') > 0)
+  call check_true('zlib: appended data', index(txt, '<AppendedData encoding="raw">') > 0)
 
-  ! ASCII file: parse the arrays back
-  txt = slurp(dir//'/grid_ascii.vtu')
-  call check_xml_frame('ascii', txt)
-  call check_true('ascii: format attribute', index(txt, 'format="ascii"') > 0)
-  call check_reals('ascii Points', ascii_reals(txt, 'Points', 18), reshape(pts, [18]))
-  call check_reals('ascii velocity', ascii_reals(txt, 'velocity', 18), reshape(vel, [18]))
-  call check_reals('ascii gap', ascii_reals(txt, 'gap', 4), gap)
-  call check_reals('ascii TimeValue', ascii_reals(txt, 'TimeValue', 1), [0.75_wp])
-  call check_ints('ascii id', ascii_ints(txt, 'id', 6), ids)
-  call check_ints('ascii status', ascii_ints(txt, 'status', 4), status)
-  call check_ints('ascii connectivity', ascii_ints(txt, 'connectivity', 10), conn)
-  call check_ints('ascii offsets', ascii_ints(txt, 'offsets', 4), offs)
-  call check_ints('ascii types', ascii_ints(txt, 'types', 4), types)
+  ! Float32 reals, 2-row points padded with z = 0, fixed-size cells
+  call vtu_begin(w, dir//'/tri.vtu', 4, 2, encoding='zlib', single=.true.)
+  call vtu_points(w, pts(1:2, 1:4))
+  call vtu_cells_fixed(w, reshape([0_ik, 1_ik, 2_ik, 0_ik, 2_ik, 3_ik], [3, 2]), vtk_triangle)
+  call vtu_cell_data(w, 'area', [0.5_wp, 0.5_wp])
+  call vtu_end(w)
+  txt = slurp(dir//'/tri.vtu')
+  call check_true('single: Float32 type', index(txt, '<DataArray type="Float32" Name="area"') > 0)
+  call check_reals('single: 2-row points padded', real(transfer(appended(txt, 'Points', 48), 1.0_real32, 12), wp), &
+                   reshape(pts(:, 1:4), [12]))
+  call check_ints('fixed cells: offsets', int(ints64(txt, 'offsets', 2), ik), [3_ik, 6_ik])
+  call check_ints('fixed cells: types', uints8(txt, 'types', 2), [vtk_triangle, vtk_triangle])
 
-  ! binary file: decode the base64 arrays
-  txt = slurp(dir//'/grid_binary.vtu')
-  call check_xml_frame('binary', txt)
-  call check_true('binary: header_type UInt64', index(txt, 'header_type="UInt64"') > 0)
-  call check_reals('binary Points', transfer(b64_array(txt, 'Points', 18*8), 1.0_wp, 18), reshape(pts, [18]))
-  call check_reals('binary velocity', transfer(b64_array(txt, 'velocity', 18*8), 1.0_wp, 18), reshape(vel, [18]))
-  call check_reals('binary gap', transfer(b64_array(txt, 'gap', 4*8), 1.0_wp, 4), gap)
-  call check_ints('binary id', transfer(b64_array(txt, 'id', 6*4), 1_int32, 6), ids)
-  call check_ints('binary connectivity', transfer(b64_array(txt, 'connectivity', 40), 1_int32, 10), conn)
-  call check_ints('binary offsets', transfer(b64_array(txt, 'offsets', 16), 1_int32, 4), offs)
-  call check_ints('binary types', int(b64_array(txt, 'types', 4), ik), types)
-  call check_true('binary: Int32 type for integer fields', index(txt, '<DataArray type="Int32" Name="id"') > 0)
-  call check_true('binary: Float64 vectors have 3 components', &
-                  index(txt, '<DataArray type="Float64" Name="velocity" NumberOfComponents="3"') > 0)
-
-  ! 2-D points are padded with z = 0; empty grids are valid
-  call write_vtu(dir//'/flat.vtu', pts(1:2, :), conn, offs, types, ascii=.true.)
-  txt = slurp(dir//'/flat.vtu')
-  call check_reals('2-row points padded', ascii_reals(txt, 'Points', 18), reshape(pts, [18]))
-  call write_vtu(dir//'/empty.vtu', pts(:, 1:0), conn(1:0), offs(1:0), types(1:0), &
-                 cell_fields=[vtk_field('gap', gap(1:0))])
+  ! vertex cells; an empty grid is valid
+  call vtu_begin(w, dir//'/cloud.vtu', 3, 3)
+  call vtu_points(w, pts(:, 1:3))
+  call vtu_vertex_cells(w)
+  call vtu_point_data(w, 'radius', [0.1_wp, 0.2_wp, 0.3_wp])
+  call vtu_end(w)
+  txt = slurp(dir//'/cloud.vtu')
+  call check_ints('vertex cells: connectivity', int(ints64(txt, 'connectivity', 3), ik), [0_ik, 1_ik, 2_ik])
+  call check_ints('vertex cells: types', uints8(txt, 'types', 3), [vtk_vertex, vtk_vertex, vtk_vertex])
+  call vtu_begin(w, dir//'/empty.vtu', 0, 0)
+  call vtu_points(w, pts(:, 1:0))
+  call vtu_cells(w, conn(1:0), offs(1:0), types(1:0))
+  call vtu_cell_data(w, 'gap', gap(1:0))
+  call vtu_end(w)
   txt = slurp(dir//'/empty.vtu')
   call check_xml_frame('empty', txt)
   call check_true('empty: zero points and cells', index(txt, 'NumberOfPoints="0" NumberOfCells="0"') > 0)
@@ -114,6 +143,7 @@ program test_vtk
   call pvd_free(pvd)
 
   call big_file()
+  call memory_stays_flat()
   call test_finish()
 
 contains
@@ -122,34 +152,105 @@ contains
   subroutine big_file()
     integer, parameter :: n = 100000
     real(wp), allocatable :: p(:, :), nrm(:, :), r(:, :), g(:)
-    integer(ik), allocatable :: c(:), o(:), t(:), st(:)
+    integer(ik), allocatable :: st(:)
     integer(i8) :: t0, t1, rate
     integer :: i
     real(wp) :: secs
-    allocate (p(3, n), nrm(3, n), r(3, n), g(n), c(n), o(n), t(n), st(n))
+    allocate (p(3, n), nrm(3, n), r(3, n), g(n), st(n))
     do i = 1, n
       p(:, i) = [real(i, wp), 0.5_wp*i, 0.0_wp]
       nrm(:, i) = [cos(0.001_wp*i), sin(0.001_wp*i), 0.0_wp]
       r(:, i) = 3.0_wp*nrm(:, i)
       g(i) = 1.0e-6_wp*i
-      c(i) = i - 1
-      o(i) = i
-      t(i) = vtk_vertex
       st(i) = mod(i, 4) + 1
     end do
     call system_clock(t0, rate)
-    call write_vtu(dir//'/big.vtu', p, c, o, t, cell_fields=[vtk_field('normal', nrm), &
-                   vtk_field('reaction', r), vtk_field('rn', r(1, :)), vtk_field('rt', r(2, :)), &
-                   vtk_field('status', st), vtk_field('gap', g)])
+    call write_cloud(dir//'/big.vtu', p, nrm, r, g, st)
     call system_clock(t1)
     secs = real(t1 - t0, wp)/real(rate, wp)
     write (*, '(a,f8.3,a)') 'INFO 1e5-vertex .vtu written in ', secs, ' s'
     call check_true('1e5-vertex .vtu written in < 5 s', secs < 5.0_wp)
     txt = slurp(dir//'/big.vtu')
-    call check_reals('big: gap read back', transfer(b64_array(txt, 'gap', 8*n), 1.0_wp, n), g)
-    call check_ints('big: status read back', transfer(b64_array(txt, 'status', 4*n), 1_int32, n), st)
+    call check_reals('big: gap read back', reals(txt, 'gap', n), g)
+    call check_ints('big: status read back', ints32(txt, 'status', n), st)
     call remove_file(dir//'/big.vtu')
   end subroutine big_file
+
+  subroutine write_cloud(path, p, nrm, r, g, st)
+    character(len=*), intent(in) :: path
+    real(wp), intent(in) :: p(:, :), nrm(:, :), r(:, :), g(:)
+    integer(ik), intent(in) :: st(:)
+    type(vtu_t) :: v
+    call vtu_begin(v, path, size(g), size(g))
+    call vtu_points(v, p)
+    call vtu_vertex_cells(v)
+    call vtu_point_data(v, 'normal', nrm)
+    call vtu_point_data(v, 'reaction', r)
+    call vtu_point_data(v, 'rn', r(1, :))
+    call vtu_point_data(v, 'rt', r(2, :))
+    call vtu_point_data(v, 'status', st)
+    call vtu_point_data(v, 'gap', g)
+    call vtu_end(v)
+  end subroutine write_cloud
+
+  !> The resident set after 200 frames of 1e4 points stays within 4 MB of the
+  !> one after 20 frames (Linux: /proc/self/status; skipped elsewhere).
+  subroutine memory_stays_flat()
+    integer, parameter :: n = 10000, frames = 200
+    real(wp), allocatable :: p(:, :), nrm(:, :), r(:, :), g(:)
+    integer(ik), allocatable :: st(:)
+    integer :: i, rss0, rss1
+    allocate (p(3, n), nrm(3, n), r(3, n), g(n), st(n))
+    do i = 1, n
+      p(:, i) = [real(i, wp), 0.5_wp*i, 0.0_wp]
+      nrm(:, i) = [cos(0.001_wp*i), sin(0.001_wp*i), 0.0_wp]
+      r(:, i) = 3.0_wp*nrm(:, i)
+      g(i) = 1.0e-6_wp*i
+      st(i) = mod(i, 4) + 1
+    end do
+    rss0 = -1
+    do i = 1, frames
+      call write_cloud(dir//'/frame.vtu', p, nrm, r, g, st)
+      if (i == 20) rss0 = resident_kb()
+    end do
+    rss1 = resident_kb()
+    call remove_file(dir//'/frame.vtu')
+    if (rss0 < 0 .or. rss1 < 0) then
+      write (*, '(a)') 'INFO resident set not readable here: memory check skipped'
+      return
+    end if
+    write (*, '(a,i0,a,i0,a,i0,a)') 'INFO resident set after 20 frames ', rss0, ' kB, after ', frames, ' frames ', &
+      rss1, ' kB'
+    call check_true('resident set grows by less than 4 MB over 180 frames', rss1 - rss0 < 4096)
+  end subroutine memory_stays_flat
+
+  !> VmRSS of this process in kB (-1 if unknown).
+  integer function resident_kb() result(kb)
+    character(len=256) :: line
+    integer :: u, ios
+    kb = -1
+    open (newunit=u, file='/proc/self/status', action='read', status='old', iostat=ios)
+    if (ios /= 0) return
+    do
+      read (u, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      if (line(1:6) == 'VmRSS:') then
+        read (line(7:), *, iostat=ios) kb
+        exit
+      end if
+    end do
+    close (u)
+  end function resident_kb
+
+  logical function has_name(list, name)
+    type(name_t), intent(in) :: list(:)
+    character(len=*), intent(in) :: name
+    integer :: i
+    has_name = .false.
+    do i = 1, size(list)
+      if (list(i)%s == name) has_name = .true.
+    end do
+  end function has_name
 
   !> Directory of this executable, with a trailing '/' ('' if unknown).
   function out_dir() result(d)
@@ -179,10 +280,12 @@ contains
 
   subroutine check_xml_frame(tag, s)
     character(len=*), intent(in) :: tag, s
+    integer :: nopen
     call check_true(tag//': XML declaration', index(s, '<?xml version="1.0"?>') == 1)
     call check_true(tag//': UnstructuredGrid', index(s, '<VTKFile type="UnstructuredGrid"') > 0)
     call check_true(tag//': closed', index(s, '</VTKFile>') > 0)
-    call check_true(tag//': DataArrays balanced', count_of(s, '<DataArray') == count_of(s, '</DataArray>'))
+    nopen = count_of(s, '<DataArray')
+    call check_true(tag//': DataArrays balanced', nopen == count_of(s, '</DataArray>') + count_of(s, 'offset="'))
     if (tag /= 'empty') call check_true(tag//': counts', index(s, 'NumberOfPoints="6" NumberOfCells="4"') > 0)
   end subroutine check_xml_frame
 
@@ -199,100 +302,146 @@ contains
     end do
   end function count_of
 
-  !> Text between the '>' that ends <DataArray ... Name="NAME" ...> and </DataArray>.
-  function array_text(s, name) result(body)
+  !> The opening tag of DataArray NAME.
+  function tag_of(s, name) result(tag)
+    character(len=*), intent(in) :: s, name
+    character(len=:), allocatable :: tag
+    integer :: i, j
+    i = index(s, 'Name="'//name//'"')
+    if (i == 0) then
+      tag = ''
+      call check_true('array '//name//' present', .false.)
+      return
+    end if
+    i = index(s(1:i), '<DataArray', back=.true.)
+    j = i + index(s(i:), '>') - 1
+    tag = s(i:j)
+  end function tag_of
+
+  !> The values of DataArray NAME as bytes, whatever its encoding (ascii
+  !> arrays are read as text by the callers).
+  function appended(s, name, nbytes) result(b)
+    character(len=*), intent(in) :: s, name
+    integer, intent(in) :: nbytes
+    integer(int8), allocatable :: b(:)
+    character(len=:), allocatable :: tag
+    integer(int64) :: off, hdr(3), nblocks, k, pos, csize
+    integer(int64), allocatable :: csizes(:)
+    integer :: ios, stat
+    integer(int64) :: base
+    allocate (b(nbytes))
+    b = 0
+    tag = tag_of(s, name)
+    call check_true(name//': appended', index(tag, 'format="appended"') > 0)
+    tag = tag(index(tag, 'offset="') + 8:)
+    read (tag(1:index(tag, '"') - 1), *, iostat=ios) off
+    call check_true(name//': offset read', ios == 0)
+    base = index(s, '<AppendedData encoding="raw">') + len('<AppendedData encoding="raw">') + 1   ! newline, '_'
+    pos = base + off + 1
+    if (index(s, 'compressor="vtkZLibDataCompressor"') == 0) then
+      call check_true(name//': byte-count header', transfer(bytes_at(s, pos, 8_int64), 1_int64) == int(nbytes, int64))
+      b = bytes_at(s, pos + 8, int(nbytes, int64))
+      return
+    end if
+    hdr = transfer(bytes_at(s, pos, 24_int64), hdr)
+    nblocks = hdr(1)
+    call check_true(name//': zlib block count', nblocks == (nbytes + hdr(2) - 1) / hdr(2))
+    call check_true(name//': zlib last block size', hdr(3) == mod(int(nbytes, int64), hdr(2)))
+    allocate (csizes(nblocks))
+    if (nblocks > 0) csizes = transfer(bytes_at(s, pos + 24, 8 * nblocks), csizes)
+    pos = pos + 24 + 8 * nblocks
+    do k = 1, nblocks
+      csize = csizes(k)
+      call zlib_uncompress(bytes_at(s, pos, csize), b((k - 1) * hdr(2) + 1:min(k * hdr(2), int(nbytes, int64))), stat)
+      call check_true(name//': zlib block inflates', stat == 0)
+      pos = pos + csize
+    end do
+  end function appended
+
+  function bytes_at(s, p0, n) result(r)
+    character(len=*), intent(in) :: s
+    integer(int64), intent(in) :: p0, n
+    integer(int8) :: r(n)
+    r = transfer(s(p0:p0 + n - 1), r)
+  end function bytes_at
+
+  !> Text inside an inline (ascii) DataArray.
+  function inline_text(s, name) result(body)
     character(len=*), intent(in) :: s, name
     character(len=:), allocatable :: body
     integer :: i, j, k
     i = index(s, 'Name="'//name//'"')
-    if (i == 0) then
-      body = ''
-      call check_true('array '//name//' present', .false.)
-      return
-    end if
     j = i + index(s(i:), '>')
     k = j + index(s(j:), '</DataArray>') - 2
     body = s(j:k)
-  end function array_text
+    do i = 1, len(body)
+      if (body(i:i) == achar(10)) body(i:i) = ' '
+    end do
+  end function inline_text
 
-  function ascii_reals(s, name, n) result(v)
+  function reals(s, name, n) result(v)
     character(len=*), intent(in) :: s, name
     integer, intent(in) :: n
     real(wp) :: v(n)
-    character(len=:), allocatable :: body
-    integer :: ios, i
-    body = array_text(s, name)
-    do i = 1, len(body)
-      if (body(i:i) == achar(10)) body(i:i) = ' '
-    end do
+    integer :: ios
+    character(len=:), allocatable :: text
     v = -999.0_wp
-    read (body, *, iostat=ios) v
-    call check_true('read '//name, ios == 0)
-  end function ascii_reals
+    if (index(tag_of(s, name), 'format="ascii"') > 0) then
+      text = inline_text(s, name)
+      read (text, *, iostat=ios) v
+      call check_true('read '//name, ios == 0)
+    else
+      v = transfer(appended(s, name, 8 * n), 1.0_wp, n)
+    end if
+  end function reals
 
-  function ascii_ints(s, name, n) result(v)
+  function ints32(s, name, n) result(v)
     character(len=*), intent(in) :: s, name
     integer, intent(in) :: n
     integer(ik) :: v(n)
-    character(len=:), allocatable :: body
-    integer :: ios, i
-    body = array_text(s, name)
-    do i = 1, len(body)
-      if (body(i:i) == achar(10)) body(i:i) = ' '
-    end do
+    integer :: ios
+    character(len=:), allocatable :: text
     v = -999
-    read (body, *, iostat=ios) v
-    call check_true('read '//name, ios == 0)
-  end function ascii_ints
+    if (index(tag_of(s, name), 'format="ascii"') > 0) then
+      text = inline_text(s, name)
+      read (text, *, iostat=ios) v
+      call check_true('read '//name, ios == 0)
+    else
+      v = transfer(appended(s, name, 4 * n), 1_int32, n)
+    end if
+  end function ints32
 
-  !> Decode a binary DataArray: check the UInt64 byte-count header, return the bytes.
-  function b64_array(s, name, nbytes) result(b)
+  function ints64(s, name, n) result(v)
     character(len=*), intent(in) :: s, name
-    integer, intent(in) :: nbytes
-    integer(int8), allocatable :: b(:)
-    integer(int8), allocatable :: all(:)
-    all = b64_decode(trim(adjustl(strip_nl(array_text(s, name)))))
-    call check_true(name//': decoded size', size(all) == 8 + nbytes)
-    call check_true(name//': byte-count header', transfer(all(1:8), 1_int64) == int(nbytes, int64))
-    b = all(9:)
-  end function b64_array
-
-  function strip_nl(s) result(r)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: r
-    integer :: i
-    r = s
-    do i = 1, len(r)
-      if (r(i:i) == achar(10)) r(i:i) = ' '
-    end do
-  end function strip_nl
-
-  function b64_decode(s) result(b)
-    character(len=*), intent(in) :: s
-    integer(int8), allocatable :: b(:)
-    character(len=*), parameter :: alpha = 'ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/'
-    integer :: i, n, npad, t, k, q(4), j
-    n = len(s)
-    npad = 0
-    if (n >= 1) then
-      if (s(n:n) == '=') npad = 1
+    integer, intent(in) :: n
+    integer(int64) :: v(n)
+    integer :: ios
+    character(len=:), allocatable :: text
+    v = -999
+    if (index(tag_of(s, name), 'format="ascii"') > 0) then
+      text = inline_text(s, name)
+      read (text, *, iostat=ios) v
+      call check_true('read '//name, ios == 0)
+    else
+      v = transfer(appended(s, name, 8 * n), 1_int64, n)
     end if
-    if (n >= 2) then
-      if (s(n - 1:n) == '==') npad = 2
+  end function ints64
+
+  function uints8(s, name, n) result(v)
+    character(len=*), intent(in) :: s, name
+    integer, intent(in) :: n
+    integer(ik) :: v(n)
+    integer :: ios
+    character(len=:), allocatable :: text
+    v = -999
+    if (index(tag_of(s, name), 'format="ascii"') > 0) then
+      text = inline_text(s, name)
+      read (text, *, iostat=ios) v
+      call check_true('read '//name, ios == 0)
+    else
+      v = iand(int(appended(s, name, n), ik), 255)
     end if
-    allocate (b(3*(n/4) - npad))
-    k = 0
-    do i = 1, n, 4
-      do j = 1, 4
-        q(j) = max(0, index(alpha, s(i + j - 1:i + j - 1)) - 1)
-      end do
-      t = ior(ior(ishft(q(1), 18), ishft(q(2), 12)), ior(ishft(q(3), 6), q(4)))
-      do j = 1, 3
-        if (k + j <= size(b)) b(k + j) = int(iand(ishft(t, -8*(3 - j)), 255) - merge(256, 0, iand(ishft(t, -8*(3 - j)), 255) > 127), int8)
-      end do
-      k = k + 3
-    end do
-  end function b64_decode
+  end function uints8
 
   subroutine check_reals(name, got, ref)
     character(len=*), intent(in) :: name

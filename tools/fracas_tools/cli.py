@@ -88,6 +88,28 @@ def _cmd_render_vtk(a):
     return 0
 
 
+def _cmd_command(a):
+    from .lmgc90 import read_run_script, run_control, write_command
+    settings = read_run_script(a.from_script) if a.from_script else {}
+    given = {"dt": a.dt, "theta": a.theta, "nb_steps": a.steps, "freq_detect": a.freq_detect,
+             "norm": a.norm, "tol": a.tol, "relax": a.relax, "gs_it1": a.it1, "gs_it2": a.it2,
+             "freq_write": a.freq_write, "freq_display": a.freq_display}
+    settings.update({k: v for k, v in given.items() if v is not None})
+    missing = [k for k in ("dt", "nb_steps") if k not in settings]
+    if missing:
+        raise ValueError("the time step and the number of steps are needed: give "
+                         + " and ".join({"dt": "--dt", "nb_steps": "--steps"}[k] for k in missing)
+                         + (f" (not found in {a.from_script})" if a.from_script else ""))
+    rc = run_control(**settings)
+    extra = {"output_hdf5_every": a.freq_hdf5, "nlgs_unconverged": a.unconverged}
+    rc.set(**{k: v for k, v in extra.items() if v is not None})
+    out = write_command(a.case_dir, rc, overwrite=a.overwrite, path=a.output)
+    print(out)
+    for line in rc.lines()[1:]:
+        print("  " + line)
+    return 0
+
+
 def build_parser():
     p = argparse.ArgumentParser(prog="fracas-tools",
                                 description="Pre- and post-processing for Fracas cases.")
@@ -152,6 +174,35 @@ def build_parser():
     s.add_argument("--ny", type=int, default=6)
     s.add_argument("--seed", type=int, default=0)
     s.set_defaults(func=_cmd_synthetic)
+
+    s = sub.add_parser("command", help="write DATBOX/COMMAND.DAT from LMGC90 settings (dt, theta, nb_steps, "
+                                       "norm, tol, gs_it1, gs_it2, ...)",
+                       description="Write the run control of an LMGC90 deck (which has no COMMAND.DAT) from the "
+                                   "settings of its pylmgc90 script: given here, or read from the script with "
+                                   "--from-script (options given here win). Settings left out keep Fracas's "
+                                   "defaults (doc/input_reference.md).")
+    s.add_argument("case_dir", help="the case directory (holding DATBOX/)")
+    s.add_argument("--from-script", metavar="RUN_PY",
+                   help="read dt, theta, nb_steps, freq_detect, norm, tol, relax, gs_it1, gs_it2, freq_write, "
+                        "freq_display from the top-level assignments of this pylmgc90 script")
+    s.add_argument("--dt", type=float, help="time step (LMGC90 dt)")
+    s.add_argument("--theta", type=float, help="theta (default 0.5)")
+    s.add_argument("--steps", "--nb-steps", type=int, dest="steps", help="number of steps (LMGC90 nb_steps)")
+    s.add_argument("--freq-detect", type=int, help="rough detection every n steps (default 1)")
+    s.add_argument("--norm", choices=("Quad", "Maxm", "QM/16"), help="NLGS check type (default Quad)")
+    s.add_argument("--tol", type=float, help="NLGS tolerance (default 1e-4)")
+    s.add_argument("--relax", type=float, help="NLGS relaxation (default 1.0)")
+    s.add_argument("--it1", "--gs-it1", type=int, dest="it1",
+                   help="Gauss-Seidel sweeps between two convergence checks (default 50)")
+    s.add_argument("--it2", "--gs-it2", type=int, dest="it2", help="convergence checks at most (default 400)")
+    s.add_argument("--freq-write", type=int, help="DOF.OUT.n / Vloc_Rloc.OUT.n every n steps (default: last step)")
+    s.add_argument("--freq-display", type=int, help="DISPLAY (VTK) files every n steps (default: none)")
+    s.add_argument("--freq-hdf5", type=int, help="HDF5 snapshots every n steps (default: about 100 a run)")
+    s.add_argument("--unconverged", choices=("warn", "fail", "stop"),
+                   help="what a step at the NLGS sweep limit does (default warn)")
+    s.add_argument("--output", help="file to write (default CASE_DIR/DATBOX/COMMAND.DAT)")
+    s.add_argument("--overwrite", action="store_true", help="replace an existing COMMAND.DAT")
+    s.set_defaults(func=_cmd_command)
 
     s = sub.add_parser("render-vtk", help="draw one frame of DISPLAY/*.vtu (outlines, contact forces) as PNG")
     s.add_argument("display_dir", help="a DISPLAY folder holding fracas.pvd")

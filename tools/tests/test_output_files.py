@@ -10,11 +10,11 @@ repository (build/*/test_cases/unit/); without it the tests are skipped.
         /usr/bin/python3 -m pytest -q tools/tests/test_output_files.py
 """
 
-import base64
 import glob
 import os
 import subprocess
 import xml.etree.ElementTree as ET
+import zlib
 from pathlib import Path
 
 import h5py
@@ -160,22 +160,41 @@ VTK_DTYPES = {"Float64": "<f8", "Float32": "<f4", "Int32": "<i4", "Int64": "<i8"
 
 
 def read_vtu(path):
-    """Parse a .vtu (inline ascii or base64 binary, uncompressed) into a dict."""
-    root = ET.parse(path).getroot()                    # raises on invalid XML
+    """Parse a .vtu into a dict: inline ascii arrays, or appended raw binary
+    (UInt64 byte count + bytes) uncompressed or zlib-compressed in VTK's block
+    layout ([nblocks][block size][last block size][compressed sizes] + blocks)."""
+    data = Path(path).read_bytes()
+    start = data.find(b"<AppendedData")
+    xml_part = data if start < 0 else data[:start] + b"</VTKFile>"
+    blob = b""
+    if start >= 0:
+        u = data.index(b"_", data.index(b">", start)) + 1
+        blob = data[u:data.rindex(b"</AppendedData>")]
+    root = ET.fromstring(xml_part)                     # raises on invalid XML
     assert root.tag == "VTKFile" and root.get("type") == "UnstructuredGrid"
     assert root.get("byte_order") == "LittleEndian"
-    header = np.dtype("<u8" if root.get("header_type") == "UInt64" else "<u4")
+    assert root.get("header_type") == "UInt64"
+    zlib_blocks = root.get("compressor") == "vtkZLibDataCompressor"
 
     def values(da):
         dtype = np.dtype(VTK_DTYPES[da.get("type")])
-        text = (da.text or "").strip()
         if da.get("format") == "ascii":
+            text = (da.text or "").strip()
             return np.array(text.split(), dtype=float).astype(dtype) if text else np.zeros(0, dtype)
-        assert da.get("format") == "binary"
-        raw = base64.b64decode(text)
-        nbytes = int(np.frombuffer(raw[:header.itemsize], header)[0])
-        assert nbytes == len(raw) - header.itemsize, "byte-count header"
-        return np.frombuffer(raw[header.itemsize:], dtype)
+        assert da.get("format") == "appended"
+        off = int(da.get("offset"))
+        if not zlib_blocks:
+            nbytes = int(np.frombuffer(blob[off:off + 8], "<u8")[0])
+            return np.frombuffer(blob[off + 8:off + 8 + nbytes], dtype)
+        nblocks, bsize, last = (int(x) for x in np.frombuffer(blob[off:off + 24], "<u8"))
+        sizes = np.frombuffer(blob[off + 24:off + 24 + 8 * nblocks], "<u8")
+        pos, raw = off + 24 + 8 * nblocks, b""
+        for k, c in enumerate(sizes):
+            chunk = zlib.decompress(blob[pos:pos + int(c)])
+            assert len(chunk) == (last if (k == nblocks - 1 and last) else bsize)
+            raw += chunk
+            pos += int(c)
+        return np.frombuffer(raw, dtype)
 
     piece = root.find("UnstructuredGrid/Piece")
     out = {"np": int(piece.get("NumberOfPoints")), "nc": int(piece.get("NumberOfCells")),
@@ -200,15 +219,27 @@ def check_grid(g):
     assert len(g["offsets"]) == len(g["types"]) == g["nc"]
     assert np.all(np.diff(g["offsets"]) >= 0) and g["offsets"][-1] == len(g["connectivity"])
     assert g["connectivity"].min() >= 0 and g["connectivity"].max() < g["np"]
-    assert set(g["types"].tolist()) <= {1, 3, 4, 7}
+    assert set(g["types"].tolist()) <= {1, 3, 4, 5, 7, 9}
     for name, v in g["point"].items():
         assert len(v) == g["np"], name
     for name, v in g["cell"].items():
         assert len(v) == g["nc"], name
 
 
-def test_bodies_vtu(sample):
-    g = read_vtu(sample / "bodies_000001.vtu")
+def test_disks_vtu(sample):
+    g = read_vtu(sample / "disks_000001.vtu")          # appended, zlib
+    check_grid(g)
+    assert (g["np"], g["nc"]) == (3, 3)
+    assert list(g["types"]) == [1, 1, 1]
+    np.testing.assert_allclose(g["point"]["radius"], [1.0, 1.0, 0.9])
+    np.testing.assert_allclose(g["points"][2, :2], [1.0, 1.69])
+    np.testing.assert_allclose(g["point"]["velocity"][2], [0.0, -0.5, 0.0])
+    assert g["point"]["body"].dtype == np.int32 and list(g["point"]["body"]) == [1, 2, 3]
+    np.testing.assert_allclose(g["field"]["TimeValue"], [4e-3])
+
+
+def test_shapes_vtu(sample):
+    g = read_vtu(sample / "shapes_000001.vtu")         # appended, raw
     check_grid(g)
     assert (g["np"], g["nc"]) == (3 * 16, 3)
     assert list(g["types"]) == [7, 7, 7]
@@ -216,19 +247,18 @@ def test_bodies_vtu(sample):
     assert g["cell"]["velocity"].shape == (3, 3)
     np.testing.assert_allclose(g["cell"]["velocity"][2], [0.0, -0.5, 0.0])
     np.testing.assert_allclose(g["cell"]["spin"], [0.0, 1.0, -2.0])
-    assert g["cell"]["id"].dtype == np.int32 and list(g["cell"]["id"]) == [1, 2, 3]
-    np.testing.assert_allclose(g["field"]["TimeValue"], [4e-3])
+    assert g["cell"]["body"].dtype == np.int32 and list(g["cell"]["body"]) == [1, 2, 3]
     # outline of disk 3: radius 0.9 about (1, 1.69)
     ring = g["points"][32:48, :2] - [1.0, 1.69]
     np.testing.assert_allclose(np.hypot(ring[:, 0], ring[:, 1]), 0.9, rtol=1e-12)
 
 
 def test_contacts_vtu(sample):
-    g = read_vtu(sample / "contacts_000001.vtu")
+    g = read_vtu(sample / "contacts_000001.vtu")       # inline ascii
     check_grid(g)
     assert (g["np"], g["nc"]) == (2, 2)
     assert list(g["types"]) == [1, 1]
-    c = g["cell"]
+    c = g["point"]
     np.testing.assert_allclose(c["rn"], [12.0, 11.5])
     np.testing.assert_allclose(c["rt"], [0.1, -0.1])
     n = c["normal"][:, :2]
@@ -238,12 +268,30 @@ def test_contacts_vtu(sample):
     np.testing.assert_allclose(c["gap"], [-1e-4, 2e-5])
 
 
+def test_vtk_library_reads_them(sample):
+    """VTK's own XML reader (python3-vtk9, what ParaView uses) loads every file."""
+    vtk = pytest.importorskip("vtkmodules.vtkIOXML")
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    for name, n_points, n_cells, field in (("disks_000001.vtu", 3, 3, "radius"),
+                                           ("shapes_000001.vtu", 48, 3, "spin"),
+                                           ("contacts_000001.vtu", 2, 2, "rn")):
+        r = vtk.vtkXMLUnstructuredGridReader()
+        r.SetFileName(str(sample / name))
+        r.Update()
+        g = r.GetOutput()
+        assert (g.GetNumberOfPoints(), g.GetNumberOfCells()) == (n_points, n_cells), name
+        arr = g.GetPointData().GetArray(field) or g.GetCellData().GetArray(field)
+        assert arr is not None, (name, field)
+        np.testing.assert_allclose(vtk_to_numpy(arr), read_vtu(sample / name)["point" if
+                                   g.GetPointData().GetArray(field) else "cell"][field])
+
+
 def test_pvd(sample):
     root = ET.parse(sample / "fracas.pvd").getroot()
     assert root.get("type") == "Collection"
     sets = root.findall("Collection/DataSet")
-    assert [d.get("file") for d in sets] == ["bodies_000001.vtu", "contacts_000001.vtu"]
-    assert [d.get("part") for d in sets] == ["0", "1"]
+    assert [d.get("file") for d in sets] == ["disks_000001.vtu", "shapes_000001.vtu", "contacts_000001.vtu"]
+    assert [d.get("part") for d in sets] == ["0", "1", "2"]
     assert all(float(d.get("timestep")) == pytest.approx(4e-3) for d in sets)
     assert all((sample / d.get("file")).is_file() for d in sets)
     assert not list(sample.glob("*.part"))

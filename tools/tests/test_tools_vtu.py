@@ -39,19 +39,30 @@ def test_frames_match_hdf5(run):
     entries = vtu.read_pvd(run / "DISPLAY" / "fracas.pvd")
     times = sorted({t for t, _, _ in entries})
     assert len(times) == 3                               # initial state + 2 outputs
-    last = {p: f for t, p, f in entries if t == times[-1]}
-    bodies = vtu.read_vtu(last[0])
-    contacts = vtu.read_vtu(last[1])
+    last = {vtu.piece_of(f): f for t, p, f in entries if t == times[-1]}
+    assert set(last) == {"disks", "shapes", "contacts"}      # disks as points, walls as shapes
+    disks = vtu.read_vtu(last["disks"])
+    shapes = vtu.read_vtu(last["shapes"])
+    contacts = vtu.read_vtu(last["contacts"])
+    # DISPLAY reals are Float32 (output_vtk_precision single): 7 digits
     with h5py.File(run / "OUTBOX" / "fracas.h5") as f:
         snap = f["snapshots"][sorted(f["snapshots"].keys())[-1]]
-        assert bodies["time"] == pytest.approx(snap.attrs["time"], abs=1e-12)
+        assert disks["time"] == pytest.approx(snap.attrs["time"], abs=1e-12)   # the time is Float64
         c = snap["contacts"]
         assert len(contacts["offsets"]) == len(c["inter"])
-        np.testing.assert_allclose(contacts["cell_data"]["rn"], c["reaction"][:, 1], rtol=0, atol=1e-12)
-        np.testing.assert_allclose(contacts["points"][:, :2], c["point"][:], atol=1e-15)
+        rn = c["reaction"][:, 1]
+        np.testing.assert_allclose(contacts["point_data"]["rn"], rn, rtol=1e-6, atol=1e-6 * np.abs(rn).max())
+        np.testing.assert_allclose(contacts["points"][:, :2], c["point"][:], rtol=1e-6, atol=1e-7)
         v = snap["bodies/V"][:]
-        body = bodies["cell_data"]["body"]
-        np.testing.assert_allclose(bodies["cell_data"]["spin"], v[body - 1, 2], atol=1e-15)
+        x = f["bodies/reference"][:] + snap["bodies/X"][:]
+        body = disks["point_data"]["body"]
+        np.testing.assert_allclose(disks["point_data"]["spin"], v[body - 1, 2], rtol=1e-6,
+                                   atol=1e-6 * np.abs(v[:, 2]).max())
+        np.testing.assert_allclose(disks["points"][:, :2], x[body - 1, :2], rtol=1e-6, atol=1e-7)
+        np.testing.assert_allclose(disks["point_data"]["radius"], f["contactors/radius"][:][
+            f["contactors/kind"][:] == 1], rtol=1e-6)
+        walls = shapes["cell_data"]["body"]
+        assert len(walls) == int(np.sum(f["contactors/kind"][:] != 1))
 
 
 def test_render_writes_png(run, tmp_path):

@@ -1,0 +1,63 @@
+!> Driven degrees of freedom (DRV_DOF.DAT) of any body model: an imposed
+!> velocity or an added force, as a function of time. The body model says what
+!> `target` and `dof` index (a rigid body and its dof 1..3, a mesh node and its
+!> dof 1..2).
+module fracas_drives
+  use fracas_kinds, only: wp
+  use fracas_deck, only: driven_dof_input_t
+  implicit none
+  private
+  public :: drive_t, drive_from_input, drive_value
+
+  type :: drive_t
+    integer :: body = 0, dof = 0         !< body (rigid) or mesh node, and its dof
+    logical :: is_velocity = .true.
+    real(wp) :: ct = 0.0_wp, amp = 0.0_wp, omega = 0.0_wp, phi = 0.0_wp, rampi = 0.0_wp, ramp = 0.0_wp
+    real(wp), allocatable :: evo_t(:), evo_v(:)   !< evolution table, used if allocated
+  end type drive_t
+
+contains
+
+  !> The drive of one DRV_DOF.DAT line, acting on `target` (body or mesh node).
+  function drive_from_input(inp, target) result(d)
+    type(driven_dof_input_t), intent(in) :: inp
+    integer, intent(in) :: target
+    type(drive_t) :: d
+    d%body = target
+    d%dof = inp%dof
+    d%is_velocity = inp%kind == 'vlocy'
+    d%ct = inp%ct; d%amp = inp%amp; d%omega = inp%omega; d%phi = inp%phi
+    d%rampi = inp%rampi; d%ramp = inp%ramp
+    if (inp%evolution) then
+      d%evo_t = inp%evo_t
+      d%evo_v = inp%evo_v
+    end if
+  end function drive_from_input
+
+  !> Value of a driven dof at time t: (CT + AMP cos(OMEGA t + PHI)) min(1, RAMPI + RAMP t),
+  !> or the linear interpolation of its evolution table (end segments extrapolated).
+  pure real(wp) function drive_value(d, t) result(val)
+    type(drive_t), intent(in) :: d
+    real(wp), intent(in) :: t
+    integer :: lo, hi, mid, n
+    if (allocated(d%evo_t)) then
+      n = size(d%evo_t)
+      if (n == 1) then
+        val = d%evo_v(1)
+        return
+      end if
+      lo = 1; hi = n
+      do while (hi - lo > 1)
+        mid = (lo + hi) / 2
+        if (d%evo_t(mid) <= t) then
+          lo = mid
+        else
+          hi = mid
+        end if
+      end do
+      val = d%evo_v(lo) + (d%evo_v(hi) - d%evo_v(lo)) * (t - d%evo_t(lo)) / (d%evo_t(hi) - d%evo_t(lo))
+    else
+      val = (d%ct + d%amp * cos(d%omega * t + d%phi)) * min(1.0_wp, d%rampi + d%ramp * t)
+    end if
+  end function drive_value
+end module fracas_drives
