@@ -46,6 +46,8 @@ module fracas_nlgs
     real(wp) :: residual = 0.0_wp        !< natural map ||F|| / ||q||
     real(wp) :: residual_onepq = 0.0_wp  !< ||F|| / (1 + ||q||)
     integer :: nactive = 0               !< contacts with a non-zero reaction
+    integer(i8) :: updates = 0           !< local solves done: swept contacts of every sweep and check pass
+    real(wp) :: velocity_seconds = 0.0_wp !< meshes: wall time of the final solve of their velocities
   end type nlgs_report_t
 
   !> Solver state kept between steps (random stream, work arrays). The sweeps
@@ -423,6 +425,7 @@ contains
     integer :: k, iblock, isweep, n
     real(wp) :: sums(7), maxes(2), fsum, qsum, vscale
     logical :: diverged
+    integer(i8) :: tv0, tv1, rate
     n = c%n
     diverged = .false.
     report%sweeps = 0
@@ -494,7 +497,12 @@ contains
       call unpack_contacts()
     end if
     call unpack_bodies()
-    if (c%with_mesh) call mesh_velocities()
+    if (c%with_mesh) then
+      call system_clock(tv0, rate)
+      call mesh_velocities()
+      call system_clock(tv1)
+      report%velocity_seconds = real(tv1 - tv0, wp) / real(rate, wp)
+    end if
     ! Final local velocities, statuses and the natural-map residual.
     fsum = 0.0_wp; qsum = 0.0_wp
     report%nactive = 0
@@ -799,6 +807,7 @@ contains
       real(wp) :: s6(6), g6(6), gmax(2)
       integer :: np
       np = solver%np
+      report%updates = report%updates + np + solver%ng
       call gs_sweep_2d_packed(np, solver%pb, solver%pc, solver%pcoh, solver%any_coh, c%coh, solver%pr, solver%pst, solver%bv, &
                               solver%s%relax, check, s6, maxes, evaluate_only)
       if (solver%ng > 0) then

@@ -37,14 +37,14 @@ module fracas_output
   public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
             output_flush, output_close, series_names, output_owns, output_summary, output_timing
 
-  integer, parameter :: n_series = 33
+  integer, parameter :: n_series = 35
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
     'step', 'time', 'contacts', 'active_contacts', 'sweeps', 'converged', 'residual_natural_map', &
     'residual_onepq', 'quad_dv', 'maxm_dv', 'mean_dvor', 'kinetic_energy', 'work_gravity', &
     'work_forces', 'work_supports', 'dissipated', 'cohesive_energy', 'damage_dissipated', 'balance_error', &
     'mean_overlap', 'max_overlap', 'solve_time', 'step_time', 'elastic_energy', 'plastic_work', &
     'newton_iterations', 'crack_length', 'damaged_length', 'broken_interfaces', 'damaged_interfaces', &
-    'bodies_time', 'detect_time', 'prepare_time']
+    'bodies_time', 'detect_time', 'prepare_time', 'contact_updates', 'velocity_time']
   integer, parameter :: n_outline = 24   !< points of a circle or wall outline
   !> Seconds of wall time between flushes of the POSTPRO files.
   real(wp), parameter :: flush_interval = 2.0_wp
@@ -993,7 +993,8 @@ contains
       sc%damage_dissipated, balance, &
       rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
       sc%meshes%plastic_work, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
-      real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds])
+      real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds, &
+      real(rep%nlgs%updates, wp), rep%velocity_seconds])
     call postpro_step(o%pp, sc, rep)
     call flush_if_due(o)
     call clocked(o, k_series, t0)

@@ -38,7 +38,8 @@ module fracas_scene
     real(wp) :: bodies_seconds = 0.0_wp  !< free velocities (meshes: residual, factorizations, Newton)
     real(wp) :: detect_seconds = 0.0_wp  !< contact detection and history
     real(wp) :: prepare_seconds = 0.0_wp !< Delassus blocks (meshes: compliance, G blocks) and laws
-    real(wp) :: solve_seconds = 0.0_wp   !< NLGS sweeps
+    real(wp) :: solve_seconds = 0.0_wp   !< NLGS sweeps (meshes: and the final solve of their velocities)
+    real(wp) :: velocity_seconds = 0.0_wp !< of solve_seconds: the final solve of the meshes' velocities
     real(wp) :: step_seconds = 0.0_wp    !< the whole step
     integer :: newton_iterations = 0     !< meshed bodies: Newton iterations of the step
     logical :: newton_converged = .true. !< ... and whether their loop converged
@@ -332,6 +333,7 @@ contains
       call lap(rep%prepare_seconds)
       call nlgs_solve(sc%solver, c, b, m, rep%nlgs)
       call lap(rep%solve_seconds)
+      rep%velocity_seconds = rep%nlgs%velocity_seconds
       ! Nonlinear meshed bodies: Newton iterations, the contact problem solved
       ! in each (warm-started from the last), as LMGC90.
       do
@@ -343,6 +345,8 @@ contains
         call nlgs_solve(sc%solver, c, b, m, newton_rep)
         call lap(rep%solve_seconds)
         rep%nlgs%sweeps = rep%nlgs%sweeps + newton_rep%sweeps
+        rep%nlgs%updates = rep%nlgs%updates + newton_rep%updates
+        rep%velocity_seconds = rep%velocity_seconds + newton_rep%velocity_seconds
       end do
       call lap(rep%bodies_seconds)
       rep%newton_iterations = m%iterations

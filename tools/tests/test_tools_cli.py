@@ -127,6 +127,10 @@ def test_end_to_end_with_fracas(tmp_path):
             assert 0.0 <= a[part + "_cpu_seconds"] <= a[part + "_seconds"] + 0.01, part
         assert a["loop_cpu_seconds"] > 0.0
         assert f["series/step_time"][:].sum() <= a["loop_seconds"]
+        # rigid contacts: only those the law keeps active are swept, so the count of
+        # local solves is at most (sweeps + one check pass per 50-sweep block) x contacts
+        sw, nc, upd = (f["series/" + k][:] for k in ("sweeps", "contacts", "contact_updates"))
+        assert upd.sum() > 0 and (upd <= (sw + sw / 50) * nc).all()
     with post.Run(d) as run:
         s = run.snapshot(-1)
         assert s.step == 50
@@ -135,3 +139,29 @@ def test_end_to_end_with_fracas(tmp_path):
         assert (s.pos[:60, 1] < ref).all()
     text = post.report(d).read_text()
     assert "force_network.png" in text
+
+
+@pytest.mark.skipif(not (DECKS / "mesh_exploded_beam").is_dir(), reason=f"LMGC90 decks not found at {DECKS}")
+def test_contact_updates_and_velocity_time(tmp_path):
+    """Series contact_updates (doc/output_layout.md 1.3) counts every local solve of the
+    NLGS exactly: on mesh_exploded_beam every one of the 116 cohesive contacts is swept in
+    each of the step's sweeps and in the check pass after each block of 50 (LMGC90's
+    convergence check), so a step costs (sweeps + sweeps / 50) x 116 updates. The final
+    solve of the meshes' velocities (velocity_time) is part of solve_time."""
+    cands = [os.environ.get("FRACAS_BIN", "")] + sorted(str(p) for p in REPO.glob("build/*/bin/fracas"))
+    exe = next((c for c in cands if c and os.access(c, os.X_OK)), None)
+    if exe is None:
+        pytest.skip("no built fracas binary (set FRACAS_BIN or build the project)")
+    cmd = REPO / "test_cases" / "compat" / "mesh_exploded_beam" / "run.dat"
+    out = tmp_path / "beam"
+    r = subprocess.run([exe, "-q", "--command", str(cmd), "--set", "number_of_steps=20",
+                        str(DECKS / "mesh_exploded_beam"), "--output", str(out)],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stdout + r.stderr
+    import h5py
+    with h5py.File(out / "OUTBOX" / "fracas.h5", "r") as f:
+        sw, nc, upd, vt, st = (f["series/" + k][:] for k in
+                               ("sweeps", "contacts", "contact_updates", "velocity_time", "solve_time"))
+    assert (nc == 116).all() and (sw % 50 == 0).all() and sw.min() >= 50
+    assert (upd == (sw + sw // 50) * 116).all()
+    assert (vt > 0.0).all() and (vt <= st).all()
