@@ -265,7 +265,7 @@ def median_record(reps):
     return out
 
 
-def study(kind, sizes, steps, fracas, work, callgrind_max, cg_steps, repeat):
+def study(kind, sizes, steps, fracas, work, callgrind_max, cg_steps, repeat, save=None):
     results = []
     for n in sizes:
         if kind == "big":
@@ -296,6 +296,8 @@ def study(kind, sizes, steps, fracas, work, callgrind_max, cg_steps, repeat):
               f"{rec['ns_per_update'] or 0:.1f}, load {rec['load_before']}-{rec['load_after']}", flush=True)
         results.append(rec)
         shutil.rmtree(d, ignore_errors=True)
+        if save:
+            save({"runs": results})     # what ran so far survives a stopped study
     return results
 
 
@@ -360,6 +362,7 @@ def main():
         import mesh_bench_plot
         mesh_bench_plot.main(RESULTS, IMG)
         return
+    path = RESULTS / f"mesh_{a.what}{a.tag}.json"
     if a.what == "lmgc90":
         res = lmgc90_study(a.fracas, work, a.repeat, a.callgrind)
     else:
@@ -367,9 +370,9 @@ def main():
         sizes = [int(s) for s in (a.sizes or default).split(",")]
         steps = a.steps or (50 if a.what == "big" else 20)
         cg_steps = tuple(int(x) for x in a.callgrind_steps.split(","))
-        res = {"runs": study(a.what, sizes, steps, a.fracas, work, a.callgrind, cg_steps, a.repeat)}
+        res = {"runs": study(a.what, sizes, steps, a.fracas, work, a.callgrind, cg_steps, a.repeat,
+                             save=lambda r: path.write_text(json.dumps({**r, "machine": machine}, indent=1)))}
     res["machine"] = machine
-    path = RESULTS / f"mesh_{a.what}{a.tag}.json"
     path.write_text(json.dumps(res, indent=1))
     print("wrote", path)
 

@@ -818,7 +818,17 @@ class Case:
     def append(self, body):
         """Add a Body or MeshBody; its number is its rank within its model."""
         self.bodies.append(body)
-        body.number = sum(1 for b in self.bodies if b.model == body.model)
+        # Bodies per model, kept between calls (an exploded mesh appends 1e5 bodies:
+        # counting them all each time was quadratic); recounted if bodies were added
+        # to the list directly.
+        counts = getattr(self, "_model_counts", None)
+        if counts is None or self._counted != len(self.bodies) - 1:
+            counts = {}
+            for b in self.bodies[:-1]:
+                counts[b.model] = counts.get(b.model, 0) + 1
+        counts[body.model] = counts.get(body.model, 0) + 1
+        body.number = counts[body.model]
+        self._model_counts, self._counted = counts, len(self.bodies)
         return body
 
     def body(self, model, number):
