@@ -2,7 +2,7 @@
 """Plots and Markdown tables of the meshed-body benchmark (tools/bench/mesh_bench.py):
 reads bench/results/mesh_{big,exploded,lmgc90}.json, writes doc/img/bench_mesh_big.png,
 doc/img/bench_mesh_exploded.png and bench/results/mesh_tables.md (the tables of
-doc/benchmarks.md section 4).
+doc/benchmarks.md section 6).
 
     /usr/bin/python3 tools/bench/mesh_bench.py plot
 """
