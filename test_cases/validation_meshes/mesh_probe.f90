@@ -18,7 +18,7 @@ program mesh_probe
   use fracas_deck, only: deck_t
   use fracas_read_deck, only: read_deck
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
-  use fracas_mailx, only: mailx_gauss_values
+  use fracas_mailx, only: mailx_gauss_values, mailx_kinetic_energy
   use fracas_bulk, only: gp_size
   implicit none
   type(deck_t) :: deck
@@ -54,7 +54,7 @@ contains
     real(wp), allocatable :: gp(:, :)
     integer :: j
     write (u, '(a,1x,i0,1x,es24.16e3)') 'step', istep, sc%time
-    write (u, '(a,3(1x,es24.16e3))') 'energy', rep%kinetic, sc%meshes%elastic, sc%meshes%plastic_work
+    write (u, '(a,3(1x,es24.16e3))') 'energy', mailx_kinetic_energy(sc%meshes), sc%meshes%elastic, sc%meshes%plastic_work
     write (u, '(a,1x,i0)') 'nodes', sc%meshes%nnodes
     do j = 1, sc%meshes%nnodes
       write (u, '(6(1x,es24.16e3))') sc%meshes%ref(:, j), sc%meshes%x(:, j), sc%meshes%v(:, j)
