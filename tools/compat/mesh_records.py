@@ -212,10 +212,9 @@ def read_vloc(path):
         if lines[i].startswith("$icdan"):
             c = Contact()
             c.inter = lines[i].split()[1]
-            head = lines[i + 1].split()
             ids = lines[i + 2].split()
             # CLALp/DKALp/PLALp: the antagonist segment follows the antagonist tactor number
-            seg = int(ids[9]) if ids[4][:1].isalpha() and len(ids) > 11 else 0
+            seg = int(ids[9]) if len(ids) == 12 and ids[7] == "ALpxx" else 0
             c.segment = seg
             c.status = ids[-2]
             c.key = (c.inter, ids[0], int(ids[1]), int(ids[3]), ids[5], int(ids[6]), int(ids[8]), seg)

@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from meshdeck import Deck, node_id, quads, rect_grid  # noqa: E402
+from meshdeck import Deck, quads, rect_grid  # noqa: E402
 from valmesh import args, check, finish, run_fracas, run_probe, series  # noqa: E402
 
 E, NU, RHO = 1.0e9, 0.3, 2000.0

@@ -44,7 +44,7 @@ def half_disk_mesh(h_contact, h_far):
     arc2 = occ.addCircleArc(pb, c, pl)
     diam = occ.addLine(pl, pr)
     loop = occ.addCurveLoop([arc1, arc2, diam])
-    surf = occ.addPlaneSurface([loop])
+    occ.addPlaneSurface([loop])
     occ.synchronize()
     f = gmsh.model.mesh.field
     dist = f.add("Distance")

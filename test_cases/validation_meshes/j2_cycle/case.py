@@ -49,7 +49,7 @@ def build(case_dir, plane):
     d.drive(b, 0, 2)
     d.drive(b, 3, 1)
     # Velocity at each step end: the table holds the values at the step times.
-    table, t, v = [(0.0, 0.0)], 0.0, 0.0
+    table, t = [(0.0, 0.0)], 0.0
     for sgn, n in SEGMENTS:
         table.append((t + H, sgn * DEPS / H))
         t += n * H

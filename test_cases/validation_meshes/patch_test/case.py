@@ -92,7 +92,7 @@ def main():
         # The executable on the same deck: its GPV.OUT at the printed digits.
         run_fracas(a.fracas, case)
         vals = []
-        lines = Path(case, "OUTBOX", f"GPV.OUT.1").read_text().splitlines()
+        lines = Path(case, "OUTBOX", "GPV.OUT.1").read_text().splitlines()
         for i, ln in enumerate(lines):
             if ln.startswith(" MECAx"):
                 j = i + 1
