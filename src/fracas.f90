@@ -108,7 +108,7 @@ contains
       if (every_n(hdf5_every)) call output_snapshot(out, sc)
       if (every_n(deck%run%output_dof_every) .or. (deck%run%output_dof_every == 0 .and. istep == nsteps)) &
         call output_outbox(out, sc)
-      if (.not. rep%nlgs%converged) call not_converged()
+      if (.not. (rep%nlgs%converged .and. rep%newton_converged)) call not_converged()
       if (.not. quiet .and. (mod(istep, every) == 0 .or. istep == nsteps)) call progress()
     end do
     call output_close(out)
@@ -148,8 +148,13 @@ contains
     character(len=300) :: msg
     unconverged = unconverged + 1
     if (first_unconverged == 0) first_unconverged = sc%step
-    write (msg, '(a,i0,a,es11.4,a,i0,a,es9.2,a)') 'step ', sc%step, ' (t=', sc%time, '): NLGS did not converge in ', &
-      rep%nlgs%sweeps, ' sweeps (', check_norm(), ' / tolerance at the last check; converged below 1)'
+    if (rep%nlgs%converged) then
+      write (msg, '(a,i0,a,es11.4,a,i0,a)') 'step ', sc%step, ' (t=', sc%time, '): the Newton loop of the meshed '// &
+        'bodies did not converge in ', rep%newton_iterations, ' iterations (newton_max_iterations)'
+    else
+      write (msg, '(a,i0,a,es11.4,a,i0,a,es9.2,a)') 'step ', sc%step, ' (t=', sc%time, '): NLGS did not converge in ', &
+        rep%nlgs%sweeps, ' sweeps (', check_norm(), ' / tolerance at the last check; converged below 1)'
+    end if
     if (deck%run%nlgs_unconverged == 'stop') then
       call output_close(out, complete=.false., end_reason=trim(msg)//'; stopped: nlgs_unconverged = stop')
       call stop_run(trim(msg)//'. The run stops (nlgs_unconverged = stop); '//out_dir// &

@@ -25,6 +25,7 @@ module fracas_detection
     integer, allocatable :: cls(:)             !< class (kind, colour) of each contactor
     integer, allocatable :: rule_law(:, :)     !< (cd class, an class) -> law index, 0: none
     real(wp), allocatable :: rule_alert(:, :)  !< alert distance of that rule
+    logical, allocatable :: may_meet(:, :)     !< (class, class): some rule pairs them, either way
     real(wp) :: max_alert = 0.0_wp
     real(wp) :: rigid_median = 0.0_wp          !< median bound of disks and polygons
     logical, allocatable :: small(:)           !< binned in the cell grid (ordinary disks)
@@ -100,6 +101,16 @@ contains
         det%max_alert = max(det%max_alert, s%alert)
       end associate
     end do
+    ! The broad phase rejects most pairs (two points, two segments) at once.
+    allocate (det%may_meet(det%ncls, det%ncls))
+    do j = 1, det%ncls
+      do k = 1, det%ncls
+        det%may_meet(k, j) = (det%rule_law(k, j) /= 0 .and. inter_of(kind_of_name(cls_kind(k)), &
+                                                                    kind_of_name(cls_kind(j))) /= 0) .or. &
+                             (det%rule_law(j, k) /= 0 .and. inter_of(kind_of_name(cls_kind(j)), &
+                                                                    kind_of_name(cls_kind(k))) /= 0)
+      end do
+    end do
     ! Ordinary disks and polygons go into the cell grid; much larger ones (and
     ! walls, drums) are "big" and tested against all. Mesh contactors are
     ! sorted at each rough detection (their size follows the mesh).
@@ -134,6 +145,15 @@ contains
         if (cls_kind(i) == kind .and. cls_color(i) == color) find_cls = i
       end do
     end function find_cls
+
+    integer function kind_of_name(name)
+      character(len=5), intent(in) :: name
+      integer :: kk
+      kind_of_name = 0
+      do kk = 1, 6
+        if (kind_name(kk) == name) kind_of_name = kk
+      end do
+    end function kind_of_name
 
     function kind_name(kind) result(name)
       integer, intent(in) :: kind
@@ -283,8 +303,15 @@ contains
       integer, intent(in) :: a, b
       integer :: icd, ian, inter, law
       real(wp) :: alert, dist, reach
+      if (.not. det%may_meet(det%cls(a), det%cls(b))) return
+      ! Most pairs of neighbouring cells are far apart: reject them first.
+      if (t%kind(a) /= tk_xksid .and. t%kind(b) /= tk_xksid) then
+        reach = bound(a) + bound(b) + det%max_alert + margin
+        if ((c(1, a) - c(1, b))**2 + (c(2, a) - c(2, b))**2 > reach**2) return
+      end if
       if (t%body(a) == t%body(b) .and. t%model(a) == t%model(b)) return
-      if (.not. (body_movable(a) .or. body_movable(b))) return
+      ! Bodies whose every dof is driven still interact (a cohesive interface
+      ! tested by driving both sides): LMGC90 keeps their contacts too.
       ! Orientation: the interaction type decides which side is the candidate;
       ! for two disks the lower index is the candidate unless only the reverse rule exists.
       icd = a; ian = b
@@ -317,14 +344,6 @@ contains
       call push_pair(icd, ian, inter, law, alert)
     end subroutine consider
 
-    logical function body_movable(k)
-      integer, intent(in) :: k
-      if (t%model(k) == bm_mesh) then
-        body_movable = mesh_movable(t%body(k))
-      else
-        body_movable = movable(t%body(k))
-      end if
-    end function body_movable
 
     subroutine push_pair(icd, ian, inter, law, alert)
       integer, intent(in) :: icd, ian, inter, law
@@ -395,14 +414,18 @@ contains
   !> a contact (polygon pairs: up to two; a disk against a polyline: one per
   !> segment within the alert distance) with its local frame, gap, contact
   !> point, and lever arms (rigid sides) or nodes and weights (mesh sides).
-  subroutine detect_fine(det, t, q, c, xn)
+  !> With the step's free velocities (vq rigid, vm mesh nodes) and time step h,
+  !> a pair is also a contact when its predicted gap, gap + h min(0, u_n), is
+  !> within the alert distance: bodies approaching faster than alert / h are
+  !> caught before they overlap (doc/solver.md).
+  subroutine detect_fine(det, t, q, c, xn, vq, vm, h)
     type(detection_t), intent(in) :: det
     type(tactors_t), intent(in) :: t
     real(wp), intent(in) :: q(:, :)
     type(contacts_t), intent(inout) :: c
-    real(wp), intent(in), optional :: xn(:, :)
+    real(wp), intent(in), optional :: xn(:, :), vq(:, :), vm(:, :), h
     integer :: p, icd, ian, bcd, ban, iedge, j, nmax, seg, na, nb
-    real(wp) :: gap, normal(2), point(2), ccd(2), can(2), len, s, pcl(2)
+    real(wp) :: gap, normal(2), point(2), ccd(2), can(2), len, s, pcl(2), reach, alert
     real(wp), allocatable :: pcd(:, :), pan(:, :)
     integer :: mnode(4)
     real(wp) :: mwt(4)
@@ -429,32 +452,37 @@ contains
       ban = t%body(ian)
       mnode = 0
       mwt = 0.0_wp
+      ! Candidates are looked for up to reach; add keeps those whose gap, or
+      ! predicted gap, is within the alert distance.
+      alert = det%pair_alert(p)
+      reach = alert
+      if (present(h)) reach = alert + h * (speed(icd) + speed(ian))
       if (t%model(icd) == bm_rigid) ccd = tactor_center(t, icd, q(:, bcd))
       if (t%model(ian) == bm_rigid) can = tactor_center(t, ian, q(:, ban))
       select case (det%pair_inter(p))
       case (i_dkdkx)
         call dkdkx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
         len = t%radius(icd) * t%radius(ian) / (t%radius(icd) + t%radius(ian))
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+        call add(icd, ian, 0, 0)
       case (i_dkjcx)
         call dkjcx_geometry(ccd, t%radius(icd), can, q(3, ban), t%ax1(ian), t%ax2(ian), gap, normal, point)
         len = t%radius(icd)
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+        call add(icd, ian, 0, 0)
       case (i_dkkdx)
         call dkkdx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
         len = t%radius(icd)
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+        call add(icd, ian, 0, 0)
       case (i_dkplx)
         pan = tactor_vertices(t, ian, q(:, ban))
         call dkplx_geometry(ccd, t%radius(icd), pan, gap, normal, point, iedge)
         len = t%radius(icd)
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, iedge)
+        call add(icd, ian, 0, iedge)
       case (i_plplx)
         ! The rough pair's first contactor (lower index) is preferred as the
         ! reference face, i.e. the antagonist (as LMGC90 chooses).
         pcd = tactor_vertices(t, icd, q(:, bcd))
         pan = tactor_vertices(t, ian, q(:, ban))
-        call polygon_pair(pcd, pan, det%pair_alert(p), .false., pc)
+        call polygon_pair(pcd, pan, reach, .false., pc)
         len = pair_length(pc, t%bound(icd) * t%bound(ian) / (t%bound(icd) + t%bound(ian)))
         do j = 1, pc%n
           gap = pc%gap(j); normal = pc%normal; point = pc%point(:, j)
@@ -466,7 +494,7 @@ contains
         end do
       case (i_pljcx)
         pcd = tactor_vertices(t, icd, q(:, bcd))
-        call polygon_pair(wall_rectangle(can, q(3, ban), t%ax1(ian), t%ax2(ian)), pcd, det%pair_alert(p), &
+        call polygon_pair(wall_rectangle(can, q(3, ban), t%ax1(ian), t%ax2(ian)), pcd, reach, &
                           .true., pc)
         len = pair_length(pc, t%bound(icd))
         do j = 1, pc%n
@@ -478,7 +506,7 @@ contains
         ! the candidate's edge must face the segment (outward normals opposed).
         na = t%nodes(t%nfirst(icd)); nb = t%nodes(t%nfirst(icd) + 1)
         point = cl_point(t, icd, xn)
-        call point_polyline(point, xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), det%pair_alert(p), &
+        call point_polyline(point, xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), reach, alert, &
                             edge_normal(xn(:, na), xn(:, nb)), found, seg, s, gap, normal)
         if (found) then
           point = point - gap * normal        ! on the antagonist, as LMGC90 reports it
@@ -497,7 +525,7 @@ contains
                 t%ax2(ian) * normal
         len = 0.5_wp * norm2(xn(:, nb) - xn(:, na))
         call mesh_side(1, na, nb, t%apab(icd))
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+        call add(icd, ian, 0, 0)
       case (i_dkalp)
         ! LMGC90's DKALp: one contact per segment within the alert distance,
         ! normal from the segment's nearest point to the disk centre; the
@@ -507,7 +535,7 @@ contains
           na = t%nodes(t%nfirst(ian) + seg - 1); nb = t%nodes(t%nfirst(ian) + seg)
           call point_segment_distance(ccd, xn(:, na), xn(:, nb), s, gap, normal, point)
           gap = gap - t%radius(icd)
-          if (gap > det%pair_alert(p)) cycle
+          if (gap > reach) cycle
           call mesh_side(3, na, nb, s)
           call add(icd, ian, seg, seg)
         end do
@@ -516,7 +544,7 @@ contains
         pcd = tactor_vertices(t, icd, q(:, bcd))
         len = 0.0_wp
         do j = 1, size(pcd, 2)
-          call point_polyline(pcd(:, j), xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), det%pair_alert(p), &
+          call point_polyline(pcd(:, j), xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), reach, alert, &
                               vertex_normal(pcd, j), found, seg, s, gap, normal)
           if (.not. found) cycle
           point = pcd(:, j) - gap * normal
@@ -527,6 +555,40 @@ contains
     end do
 
   contains
+
+    !> Bound on the speed of contactor k's points over the step.
+    real(wp) function speed(k)
+      integer, intent(in) :: k
+      integer :: j
+      speed = 0.0_wp
+      if (t%model(k) == bm_mesh) then
+        do j = t%nfirst(k), t%nfirst(k + 1) - 1
+          speed = max(speed, norm2(vm(:, t%nodes(j))))
+        end do
+      else
+        speed = norm2(vq(1:2, t%body(k))) + abs(vq(3, t%body(k))) * (t%bound(k) + norm2(t%shift(:, k)))
+      end if
+    end function speed
+
+    !> Normal relative velocity (candidate minus antagonist) of the current
+    !> contact point over the step, from the free velocities.
+    real(wp) function approach(kcd, kan)
+      integer, intent(in) :: kcd, kan
+      approach = dot_product(point_velocity(kcd, 1) - point_velocity(kan, 3), normal)
+    end function approach
+
+    function point_velocity(k, first) result(v)
+      integer, intent(in) :: k, first
+      real(wp) :: v(2), r(2)
+      integer :: b
+      if (t%model(k) == bm_mesh) then
+        v = mwt(first) * vm(:, mnode(first)) + mwt(first + 1) * vm(:, mnode(first + 1))
+      else
+        b = t%body(k)
+        r = point - q(1:2, b)
+        v = vq(1:2, b) + vq(3, b) * [-r(2), r(1)]
+      end if
+    end function point_velocity
 
     !> Nodes and weights of a mesh side (first = 1: candidate, 3: antagonist):
     !> the point at (1 - s) x_a + s x_b.
@@ -543,6 +605,10 @@ contains
       integer, intent(in) :: kcd, kan, cdver, anseg
       integer :: k, b1, b2
       real(wp) :: tang(2), rcd(2), ran(2)
+      if (gap > alert) then
+        if (.not. present(h)) return
+        if (gap + h * min(0.0_wp, approach(kcd, kan)) > alert) return
+      end if
       c%n = c%n + 1
       k = c%n
       b1 = t%body(kcd); b2 = t%body(kan)

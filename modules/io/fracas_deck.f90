@@ -190,6 +190,13 @@ module fracas_deck
     real(wp) :: newton_tolerance = 1.0e-6_wp  !< relative residual of the Newton loop of nonlinear bodies
     integer :: newton_max_iterations = 20
     character(len=7) :: linear_solver = 'auto'  !< 'auto', 'dense', 'cholmod'
+    !> Velocity a driven dof has at the start of a step: its imposed value then
+    !> ('imposed', what LMGC90's RBDY2 does, see doc/solver.md), or the previous
+    !> end-of-step velocity, DOF.INI's at the first step ('initial').
+    character(len=7) :: driven_start = 'imposed'
+    !> Also make contacts of pairs whose predicted gap (gap + h min(0, u_n), free
+    !> velocities) is within the alert distance, not only their gap (doc/solver.md).
+    logical :: detection_approach = .true.
   end type run_control_t
 
   !> One command of POSTPRO.DAT (LMGC90's post-processing deck): its name as

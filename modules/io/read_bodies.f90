@@ -18,7 +18,7 @@ module fracas_read_bodies
   implicit none
   private
   public :: read_bodies, material_list, body_lookup_t, body_lookup, find_body, no_such_body, element_node_count, &
-            element_kinds, mesh_material_laws
+            element_kinds
 
   character(len=*), parameter :: supported_tactors = 'DISKx, xKSID, JONCx, POLYG, DISKb'
   character(len=*), parameter :: supported_mesh_tactors = 'CLxxx, ALpxx'

@@ -11,13 +11,14 @@ module fracas_read_command
   private
   public :: read_command, apply_command_setting, check_run_control, command_keywords
 
-  integer, parameter :: n_keys = 23
+  integer, parameter :: n_keys = 25
   character(len=21), parameter :: keys(n_keys) = [character(len=21) :: &
     'time_step', 'number_of_steps', 'final_time', 'theta', 'detection_frequency', &
     'nlgs_check', 'nlgs_tolerance', 'nlgs_relaxation', 'nlgs_sweeps_per_check', &
     'nlgs_max_checks', 'nlgs_order', 'nlgs_seed', 'output_dof_every', 'output_vtk_every', &
     'output_hdf5_every', 'progress_every', 'plane', 'newton_tolerance', 'newton_max_iterations', &
-    'linear_solver', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision']
+    'linear_solver', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision', 'driven_start', &
+    'detection_approach']
   integer, parameter :: k_time_step = 1, k_number_of_steps = 2, k_final_time = 3
 
 contains
@@ -170,6 +171,10 @@ contains
       s = 'one of strain, stress'
     case ('linear_solver')
       s = 'one of auto, dense, cholmod'
+    case ('driven_start')
+      s = 'one of imposed, initial'
+    case ('detection_approach')
+      s = 'one of yes, no'
     case ('nlgs_unconverged')
       s = 'one of warn, fail, stop'
     case ('output_vtk_disks')
@@ -254,6 +259,20 @@ contains
       select case (lv)
       case ('auto', 'dense', 'cholmod')
         run%linear_solver = lv
+      case default
+        call bad()
+      end select
+    case ('driven_start')
+      select case (lv)
+      case ('imposed', 'initial')
+        run%driven_start = lv
+      case default
+        call bad()
+      end select
+    case ('detection_approach')
+      select case (lv)
+      case ('yes', 'no')
+        run%detection_approach = lv == 'yes'
       case default
         call bad()
       end select

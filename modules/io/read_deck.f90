@@ -55,7 +55,10 @@ contains
     call read_bodies(required(dat//'/BODIES.DAT'), deck%bodies, deck%materials)
 
     ! Meshed bodies: their elements' models (MODELS.DAT) and initial Gauss-point values (GPV.INI).
-    first_mesh = findloc(deck%bodies%model, 'MAILx', dim=1)
+    first_mesh = 0
+    do k = size(deck%bodies), 1, -1
+      if (deck%bodies(k)%model == 'MAILx') first_mesh = k
+    end do
     gpv_line = 0
     if (first_mesh > 0) then
       path = dat//'/MODELS.DAT'

@@ -10,7 +10,7 @@ module fracas_read_dof
   use fracas_kinds, only: wp
   use fracas_deck, only: dof_record_t, body_input_t
   use fracas_read_bodies, only: body_lookup_t, body_lookup, find_body, no_such_body
-  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, &
+  use fracas_datbox_text, only: text_file_t, load_text, line_error, field, &
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, get_steps
   implicit none
   private

@@ -89,7 +89,7 @@ contains
     integer, intent(in) :: step
     real(wp), intent(in) :: time
     type(gpv_record_t), intent(in) :: records(:)
-    integer :: u, k, g, nv
+    integer :: u, k, g, nv, body
 
     u = open_part(path)
     write (u, '(a)') '     '
@@ -98,13 +98,14 @@ contains
     write (u, fmt_steps) '$steps', step, 'time=', time
     write (u, '(a)') ' '
     write (u, '(a)') rule
+    body = 0
     do k = 1, size(records)
       associate (r => records(k))
-        if (k == 1) then
-          call body_header()
-        else if (records(k - 1)%body /= r%body) then
-          write (u, '(a)') '$$$$$$'
-          call body_header()
+        if (r%body /= body) then
+          if (body /= 0) write (u, '(a)') '$$$$$$'
+          write (u, '(a)') '$bdyty'
+          write (u, '(1x,a5,i7)') 'MAILx', r%body
+          body = r%body
         end if
         write (u, '(a)') '$blmty'
         write (u, '(1x,a5,i7)') r%kind, r%element
@@ -118,16 +119,9 @@ contains
         end do
       end associate
     end do
-    if (size(records) > 0) write (u, '(a)') '$$$$$$'
+    if (body /= 0) write (u, '(a)') '$$$$$$'
     write (u, '(a)') rule
     call close_part(u, path)
-
-  contains
-
-    subroutine body_header()
-      write (u, '(a)') '$bdyty'
-      write (u, '(1x,a5,i7)') 'MAILx', records(k)%body
-    end subroutine body_header
   end subroutine write_gpv_file
 
   !> Vloc_Rloc.OUT.n: header then one $icdan block per record, with the id

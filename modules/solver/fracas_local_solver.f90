@@ -191,9 +191,11 @@ contains
   !>     cohesive contact (0: none; see gs_sweep_2d for coh), any_coh: some is;
   !>   bv(6, *) one record per body: v (3) and the inverse mass (3);
   !>   r(2, n), status(n) in sweep order.
-  !> Statuses are written, and the norm sums accumulated, only in check sweeps
-  !> (the last sweep of a solve is always one). Sweeps without check and without
-  !> cohesive contacts run a lean loop (sweep_plain, the local solver inlined).
+  !> A check pass (check) is LMGC90's convergence check: every contact's local
+  !> solution is computed from the current state and compared with its current
+  !> reaction (statuses written, norm sums accumulated) but nothing is applied.
+  !> Sweeps without check and without cohesive contacts run a lean loop
+  !> (sweep_plain, the local solver inlined).
   subroutine gs_sweep_2d_packed(n, cb, cr, icoh, any_coh, coh, r, status, bv, relax, check, sums, maxes)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
@@ -270,8 +272,8 @@ contains
     end do
   end subroutine sweep_plain
 
-  !> Any sweep: cohesive contacts, and with check the statuses and LMGC90's norm
-  !> sums (see gs_sweep_2d). gs_sweep_2d's loop without its indirections.
+  !> Any sweep with cohesive contacts, or a check pass (statuses and LMGC90's
+  !> norm sums, nothing applied). gs_sweep_2d's loop without its indirections.
   subroutine sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
@@ -295,6 +297,7 @@ contains
       un = dvx * n1 + dvy * n2 + bv(3, a) * cr(4, k) - bv(3, o) * cr(6, k)
       rt0 = r(1, k); rn0 = r(2, k)
       call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
+      if (check) cycle        ! a check pass evaluates, it does not apply
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
@@ -376,9 +379,10 @@ contains
   !>   slot(4, n): index in mv of the x velocity of the two nodes of each meshed
   !>     side; wt(4, n) their weights, with the sign of the side (an: minus);
   !>   mv: velocities of the bodies' contact dofs; gmat: per meshed side the
-  !>     m x 2 block G = C H^T (m = gm(s, k) contact dofs of its body, starting
-  !>     in mv at mfirst(s, k)), so an impulse change dr moves mv by G dr.
-  !> Statuses and norm sums as gs_sweep_2d_packed (check).
+  !>     m x 2 block G = C H^T stored by rows (2, m) (m = gm(s, k) contact dofs
+  !>     of its body, starting in mv at mfirst(s, k)), so an impulse change dr
+  !>     moves mv by G dr.
+  !> Statuses and norm sums as gs_sweep_2d_packed: a check pass applies nothing.
   subroutine gs_sweep_mesh(n, cr, side, gm, mfirst, slot, wt, icoh, coh, r, status, bv, mv, gmat, relax, check, &
                            sums, maxes)
     integer, intent(in) :: n
@@ -396,46 +400,58 @@ contains
     maxes = 0.0_wp
     do k = 1, n
       n1 = cr(1, k); n2 = cr(2, k)
-      ! Relative velocity of the contact point: candidate minus antagonist.
-      vx = 0.0_wp; vy = 0.0_wp; ut = 0.0_wp; un = 0.0_wp
-      do s = 1, 2
-        if (side(2 * s - 1, k) == 1) then
-          a = side(2 * s, k)
-          sgn = merge(1.0_wp, -1.0_wp, s == 1)
-          vx = vx + sgn * bv(1, a)
-          vy = vy + sgn * bv(2, a)
-          rot = sgn * bv(3, a)
-          ut = ut + rot * cr(2 * s + 1, k)
-          un = un + rot * cr(2 * s + 2, k)
-        else
-          do i = 2 * s - 1, 2 * s
-            vx = vx + wt(i, k) * mv(slot(i, k))
-            vy = vy + wt(i, k) * mv(slot(i, k) + 1)
-          end do
-        end if
-      end do
-      ut = ut + vx * n2 - vy * n1
-      un = un + vx * n1 + vy * n2
+      ! Relative velocity of the contact point: candidate minus antagonist
+      ! (the antagonist's weights carry the minus sign).
+      if (side(1, k) == 2 .and. side(3, k) == 2) then
+        vx = wt(1, k) * mv(slot(1, k)) + wt(2, k) * mv(slot(2, k)) + wt(3, k) * mv(slot(3, k)) + &
+             wt(4, k) * mv(slot(4, k))
+        vy = wt(1, k) * mv(slot(1, k) + 1) + wt(2, k) * mv(slot(2, k) + 1) + wt(3, k) * mv(slot(3, k) + 1) + &
+             wt(4, k) * mv(slot(4, k) + 1)
+        ut = vx * n2 - vy * n1
+        un = vx * n1 + vy * n2
+      else
+        vx = 0.0_wp; vy = 0.0_wp; ut = 0.0_wp; un = 0.0_wp
+        do s = 1, 2
+          if (side(2 * s - 1, k) == 1) then
+            a = side(2 * s, k)
+            sgn = merge(1.0_wp, -1.0_wp, s == 1)
+            vx = vx + sgn * bv(1, a)
+            vy = vy + sgn * bv(2, a)
+            rot = sgn * bv(3, a)
+            ut = ut + rot * cr(2 * s + 1, k)
+            un = un + rot * cr(2 * s + 2, k)
+          else
+            do i = 2 * s - 1, 2 * s
+              vx = vx + wt(i, k) * mv(slot(i, k))
+              vy = vy + wt(i, k) * mv(slot(i, k) + 1)
+            end do
+          end if
+        end do
+        ut = ut + vx * n2 - vy * n1
+        un = un + vx * n1 + vy * n2
+      end if
       rt0 = r(1, k); rn0 = r(2, k)
       call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
+      if (check) cycle        ! a check pass evaluates, it does not apply
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
-      px = drt * n2 + drn * n1
-      py = -drt * n1 + drn * n2
       do s = 1, 2
         if (side(2 * s - 1, k) == 1) then
+          px = drt * n2 + drn * n1
+          py = -drt * n1 + drn * n2
           a = side(2 * s, k)
           sgn = merge(1.0_wp, -1.0_wp, s == 1)
           bv(1, a) = bv(1, a) + sgn * bv(4, a) * px
           bv(2, a) = bv(2, a) + sgn * bv(5, a) * py
           bv(3, a) = bv(3, a) + sgn * bv(6, a) * (drt * cr(2 * s + 1, k) + drn * cr(2 * s + 2, k))
         else
+          ! G stored interleaved: (G_t(i), G_n(i)) for each contact dof i
           m = gm(s, k)
           g0 = side(2 * s, k)
           v0 = mfirst(s, k) - 1
           do i = 1, m
-            mv(v0 + i) = mv(v0 + i) + gmat(g0 + i) * drt + gmat(g0 + m + i) * drn
+            mv(v0 + i) = mv(v0 + i) + gmat(g0 + 2 * i - 1) * drt + gmat(g0 + 2 * i) * drn
           end do
         end if
       end do

@@ -3,16 +3,18 @@
 !> each contact sees its neighbours' latest reactions. Contacts between two
 !> rigid bodies run in the packed rigid kernel; contacts with a meshed side in
 !> the mesh kernel, on the velocities of the meshed bodies' contact dofs
-!> (doc/architecture.md); both in one sweep. Convergence is measured
-!> with LMGC90's normalised norms (Quad, Maxm, QM/16), computed inside the last
-!> sweep of each block, and after convergence with the FCLib natural map.
+!> (doc/architecture.md); both in one sweep. Convergence is measured as LMGC90
+!> does: after each block of sweeps, a check pass evaluates every contact's
+!> update without applying it, and LMGC90's normalised norms (Quad, Maxm,
+!> QM/16) of those updates decide; after convergence the FCLib natural map is
+!> computed too.
 module fracas_nlgs
   use fracas_kinds, only: wp, i8
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw, st_cnctc, st_cstck, st_cslfw, st_cslbw, &
                         bm_rigid, bm_mesh
   use fracas_random, only: rng_t, rng_seed, rng_permute
   use fracas_rbdy2, only: rbdy2_t
-  use fracas_mailx, only: mailx_t, mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, &
+  use fracas_mailx, only: mailx_t, mailx_require_compliance, mailx_compliance_columns, &
                           mailx_contact_dofs, &
                           mailx_velocity_from_impulses
   use fracas_contacts, only: contacts_t
@@ -79,6 +81,11 @@ module fracas_nlgs
     real(wp), allocatable :: gc(:, :), gwt(:, :), gr(:, :)
     integer, allocatable :: moff(:)
     real(wp), allocatable :: mv(:)
+    ! The step's active nodes of each meshed body: a dense body's are all its
+    ! nodes, a large body's the nodes its contacts touch (its cached compliance
+    ! may cover more); anodes(abase(b)+1 .. abase(b)+nact(b)), aslot(node) the
+    ! node's place in its body's list (0: none).
+    integer, allocatable :: nact(:), abase(:), anodes(:), aslot(:)
   end type nlgs_t
 
 contains
@@ -240,16 +247,16 @@ contains
           if (side_model(c, k, s2) /= bm_mesh .or. side_body(c, k, s2) /= side_body(c, k, s)) cycle
           mb = solver%gm(s2, k)
           g0 = solver%goff(s2, k)
-          ! H_s applied to the two columns of G_s2
+          ! H_s applied to the two columns of G_s2 (stored interleaved by rows)
           ht_g = 0.0_wp; hn_g = 0.0_wp
           do i = 2 * s - 1, 2 * s
             wgt = sgn * c%mwt(i, k)
-            sl = 2 * m%cslot(c%mnode(i, k)) - 1
+            sl = 2 * solver%aslot(c%mnode(i, k)) - 1
             do j = 1, 2
-              ht_g(j) = ht_g(j) + wgt * (t(1) * solver%gmat(g0 + (j - 1) * mb + sl) + &
-                                         t(2) * solver%gmat(g0 + (j - 1) * mb + sl + 1))
-              hn_g(j) = hn_g(j) + wgt * (nrm(1) * solver%gmat(g0 + (j - 1) * mb + sl) + &
-                                         nrm(2) * solver%gmat(g0 + (j - 1) * mb + sl + 1))
+              ht_g(j) = ht_g(j) + wgt * (t(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
+                                         t(2) * solver%gmat(g0 + 2 * sl + j))
+              hn_g(j) = hn_g(j) + wgt * (nrm(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
+                                         nrm(2) * solver%gmat(g0 + 2 * sl + j))
             end do
           end do
           c%w(1, k) = c%w(1, k) + ht_g(1)
@@ -280,7 +287,7 @@ contains
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(in) :: c
     type(mailx_t), intent(inout) :: m
-    integer :: k, s, i, nnod, total, mb, g0, node
+    integer :: k, s, i, j, nnod, total, mb, g0, node, b, na
     integer, allocatable :: nodes(:)
     real(wp), allocatable :: cols(:, :)
     real(wp) :: t(2), nrm(2), sgn, wgt
@@ -294,6 +301,52 @@ contains
       end do
     end do
     call mailx_require_compliance(m, nodes(1:nnod))
+    ! Active nodes per body (see nlgs_t), those of the last call cleared first.
+    call clear_active(solver)
+    if (allocated(solver%aslot)) then
+      if (size(solver%aslot) /= m%nnodes) deallocate (solver%aslot, solver%nact, solver%abase)
+    end if
+    if (.not. allocated(solver%aslot)) then
+      allocate (solver%aslot(m%nnodes), solver%nact(m%n), solver%abase(m%n))
+      solver%aslot = 0
+    end if
+    solver%nact = 0
+    do k = 1, nnod
+      b = m%node_body(nodes(k))
+      if (m%dense(b)) then
+        solver%nact(b) = m%node_first(b + 1) - m%node_first(b)
+      else if (solver%aslot(nodes(k)) == 0) then
+        solver%nact(b) = solver%nact(b) + 1
+        solver%aslot(nodes(k)) = -1          ! counted, placed below
+      end if
+    end do
+    na = 0
+    do b = 1, m%n
+      solver%abase(b) = na
+      na = na + solver%nact(b)
+    end do
+    if (allocated(solver%anodes)) then
+      if (size(solver%anodes) < na) deallocate (solver%anodes)
+    end if
+    if (.not. allocated(solver%anodes)) allocate (solver%anodes(max(na, 16)))
+    solver%nact = 0
+    do k = 1, nnod
+      node = nodes(k)
+      b = m%node_body(node)
+      if (solver%aslot(node) > 0) cycle
+      if (m%dense(b)) then
+        if (solver%nact(b) > 0) cycle
+        do j = m%node_first(b), m%node_first(b + 1) - 1
+          solver%nact(b) = solver%nact(b) + 1
+          solver%anodes(solver%abase(b) + solver%nact(b)) = j
+          solver%aslot(j) = solver%nact(b)
+        end do
+      else
+        solver%nact(b) = solver%nact(b) + 1
+        solver%anodes(solver%abase(b) + solver%nact(b)) = node
+        solver%aslot(node) = solver%nact(b)
+      end if
+    end do
     if (allocated(solver%goff)) then
       if (size(solver%goff, 2) < c%n) deallocate (solver%goff, solver%gm)
     end if
@@ -305,7 +358,7 @@ contains
         solver%gm(s, k) = 0
         if (side_model(c, k, s) /= bm_mesh) cycle
         solver%goff(s, k) = total
-        solver%gm(s, k) = mailx_contact_dofs(m, side_body(c, k, s))
+        solver%gm(s, k) = 2 * solver%nact(side_body(c, k, s))
         total = total + 2 * solver%gm(s, k)
       end do
     end do
@@ -319,25 +372,42 @@ contains
       do s = 1, 2
         if (side_model(c, k, s) /= bm_mesh) cycle
         sgn = merge(1.0_wp, -1.0_wp, s == 1)
+        b = side_body(c, k, s)
         mb = solver%gm(s, k)
         g0 = solver%goff(s, k)
         solver%gmat(g0 + 1:g0 + 2 * mb) = 0.0_wp
         if (allocated(cols)) then
-          if (size(cols, 1) /= mb) deallocate (cols)
+          if (size(cols, 1) /= mailx_contact_dofs(m, b)) deallocate (cols)
         end if
-        if (.not. allocated(cols)) allocate (cols(mb, 2))
+        if (.not. allocated(cols)) allocate (cols(mailx_contact_dofs(m, b), 2))
         do i = 2 * s - 1, 2 * s
           node = c%mnode(i, k)
           wgt = sgn * c%mwt(i, k)
           if (wgt == 0.0_wp) cycle
           call mailx_compliance_columns(m, node, cols)
-          solver%gmat(g0 + 1:g0 + mb) = solver%gmat(g0 + 1:g0 + mb) + wgt * (t(1) * cols(:, 1) + t(2) * cols(:, 2))
-          solver%gmat(g0 + mb + 1:g0 + 2 * mb) = solver%gmat(g0 + mb + 1:g0 + 2 * mb) + &
-                                                 wgt * (nrm(1) * cols(:, 1) + nrm(2) * cols(:, 2))
+          ! rows of the active nodes; (G_t, G_n) interleaved, as the mesh kernel reads them
+          do j = 1, solver%nact(b)
+            associate (r1 => 2 * m%cslot(solver%anodes(solver%abase(b) + j)) - 1, q => g0 + 4 * j - 4)
+              solver%gmat(q + 1) = solver%gmat(q + 1) + wgt * (t(1) * cols(r1, 1) + t(2) * cols(r1, 2))
+              solver%gmat(q + 2) = solver%gmat(q + 2) + wgt * (nrm(1) * cols(r1, 1) + nrm(2) * cols(r1, 2))
+              solver%gmat(q + 3) = solver%gmat(q + 3) + wgt * (t(1) * cols(r1 + 1, 1) + t(2) * cols(r1 + 1, 2))
+              solver%gmat(q + 4) = solver%gmat(q + 4) + wgt * (nrm(1) * cols(r1 + 1, 1) + nrm(2) * cols(r1 + 1, 2))
+            end associate
+          end do
         end do
       end do
     end do
   end subroutine mesh_blocks
+
+  !> Clear the active-node marks of the step (aslot is kept zero between steps).
+  subroutine clear_active(solver)
+    type(nlgs_t), intent(inout) :: solver
+    integer :: b
+    if (.not. allocated(solver%nact)) return
+    do b = 1, size(solver%nact)
+      solver%aslot(solver%anodes(solver%abase(b) + 1:solver%abase(b) + solver%nact(b))) = 0
+    end do
+  end subroutine clear_active
 
   !> Solve the step's contact problem. On entry b%v = vfree (rigid), m%vfree
   !> (meshes), and c%r holds the warm start; on exit the velocities are
@@ -401,9 +471,12 @@ contains
           call pack_contacts()
         end if
         do isweep = 1, solver%s%sweeps_per_check
-          call sweep(isweep == solver%s%sweeps_per_check)
+          call sweep(.false.)
           report%sweeps = report%sweeps + 1
         end do
+        ! LMGC90's check: one more pass that evaluates every contact's update
+        ! from the state the sweeps reached, without applying it.
+        call sweep(.true.)
         call norms(report)
         if (report%converged) exit blocks
       end do blocks
@@ -566,8 +639,9 @@ contains
               solver%gside(2 * sd, jg) = solver%goff(sd, k)
               solver%ggm(sd, jg) = solver%gm(sd, k)
               solver%gfirst(sd, jg) = solver%moff(side_body(c, k, sd)) + 1
-              solver%gslot(2 * sd - 1, jg) = solver%moff(side_body(c, k, sd)) + 2 * m%cslot(c%mnode(2 * sd - 1, k)) - 1
-              solver%gslot(2 * sd, jg) = solver%moff(side_body(c, k, sd)) + 2 * m%cslot(c%mnode(2 * sd, k)) - 1
+              solver%gslot(2 * sd - 1, jg) = solver%moff(side_body(c, k, sd)) + &
+                                             2 * solver%aslot(c%mnode(2 * sd - 1, k)) - 1
+              solver%gslot(2 * sd, jg) = solver%moff(side_body(c, k, sd)) + 2 * solver%aslot(c%mnode(2 * sd, k)) - 1
               solver%gwt(2 * sd - 1:2 * sd, jg) = merge(1.0_wp, -1.0_wp, sd == 1) * c%mwt(2 * sd - 1:2 * sd, k)
             end if
           end do
@@ -614,7 +688,6 @@ contains
     !> with a meshed side, on both their sides.
     subroutine pack_meshes()
       integer :: k, sd, bm, total, j, i, mb, g0, v0
-      integer, allocatable :: set(:)
       if (allocated(solver%moff)) then
         if (size(solver%moff) /= m%n) deallocate (solver%moff)
       end if
@@ -637,9 +710,8 @@ contains
       if (.not. allocated(solver%mv)) allocate (solver%mv(max(total, 16)))
       do bm = 1, m%n
         if (solver%moff(bm) < 0) cycle
-        set = mailx_contact_set(m, bm)
-        do j = 1, size(set)
-          solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, set(j))
+        do j = 1, solver%nact(bm)
+          solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, solver%anodes(solver%abase(bm) + j))
         end do
       end do
       k = n
@@ -665,7 +737,8 @@ contains
             g0 = solver%goff(sd, k)
             v0 = solver%moff(side_body(c, k, sd))
             do i = 1, mb
-              solver%mv(v0 + i) = solver%mv(v0 + i) + solver%gmat(g0 + i) * c%r(1, k) + solver%gmat(g0 + mb + i) * c%r(2, k)
+              solver%mv(v0 + i) = solver%mv(v0 + i) + solver%gmat(g0 + 2 * i - 1) * c%r(1, k) + &
+                                  solver%gmat(g0 + 2 * i) * c%r(2, k)
             end do
           end if
         end do

@@ -14,9 +14,10 @@ module fracas_output
   use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, list_dir, name_t
   use fracas_deck, only: dof_record_t, contact_record_t, deck_t, run_control_t, gpv_record_t
   use fracas_datbox_text, only: itoa, load_text, text_file_t
-  use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset, h5_close_group
+  use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset, h5_close_group, h5_create_group
   use fracas_vtk, only: vtu_t, vtu_begin, vtu_points, vtu_cells, vtu_vertex_cells, vtu_point_data, &
-                        vtu_cell_data, vtu_end, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_polygon
+                        vtu_cell_data, vtu_end, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_polygon, &
+                        vtu_cells_fixed, vtk_line
   use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc, tk_disk, &
                                tk_xksid
   use fracas_scene, only: scene_t, step_report_t
@@ -24,24 +25,26 @@ module fracas_output
   use fracas_contact_laws, only: law_czm
   use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file, write_gpv_file
   use fracas_mailx, only: mailx_gauss_values
-  use fracas_elements, only: el_ngauss_gpv, el_name
-  use fracas_bulk, only: bulk_j2, gp_sxx, gp_szz, gp_ezz, gp_pxx, gp_pzz, gp_p
+  use fracas_elements, only: el_ngauss_gpv, el_name, el_vtk_type, el_vtk_order
+  use fracas_cracks, only: crack_paths_t, cracks_paths, cracks_lengths, cracks_fragments
+  use fracas_bulk, only: bulk_j2, gp_sxx, gp_szz, gp_ezz, gp_pxx, gp_pzz, gp_p, plane_stress
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close, results_flush, &
-                               results_group
+                               results_group, results_last_snapshot
   use fracas_postpro, only: postpro_t, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns
   implicit none
   private
   public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
             output_flush, output_close, series_names, output_owns
 
-  integer, parameter :: n_series = 26
+  integer, parameter :: n_series = 33
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
     'step', 'time', 'contacts', 'active_contacts', 'sweeps', 'converged', 'residual_natural_map', &
     'residual_onepq', 'quad_dv', 'maxm_dv', 'mean_dvor', 'kinetic_energy', 'work_gravity', &
     'work_forces', 'work_supports', 'dissipated', 'cohesive_energy', 'damage_dissipated', 'balance_error', &
     'mean_overlap', 'max_overlap', 'solve_time', 'step_time', 'elastic_energy', 'plastic_work', &
-    'newton_iterations']
+    'newton_iterations', 'crack_length', 'damaged_length', 'broken_interfaces', 'damaged_interfaces', &
+    'bodies_time', 'detect_time', 'prepare_time']
   integer, parameter :: n_outline = 24   !< points of a circle or wall outline
   !> Seconds of wall time between flushes of the POSTPRO files.
   real(wp), parameter :: flush_interval = 2.0_wp
@@ -56,6 +59,7 @@ module fracas_output
     logical :: disk_points = .true.       !< disks as points with a radius (else filled polygons)
     logical :: vtk_single = .true.        !< reals of the .vtu as Float32
     integer :: part_disks = -1, part_shapes = -1, part_contacts = -1   !< .pvd parts (-1: not written)
+    integer :: part_meshes = -1, part_interfaces = -1, part_cracks = -1
     type(results_h5_t) :: h5
     logical :: h5_open = .false.
     type(postpro_t) :: pp
@@ -92,10 +96,19 @@ contains
         o%part_disks = k
         k = k + 1
       end if
-      if (any(sc%tactors%kind(1:sc%tactors%n) /= tk_disk) .or. &
-          (.not. o%disk_points .and. sc%tactors%n > 0)) then
+      if (any(sc%tactors%kind(1:sc%tactors%n) /= tk_disk .and. sc%tactors%model(1:sc%tactors%n) == bm_rigid) .or. &
+          (.not. o%disk_points .and. any(sc%tactors%kind(1:sc%tactors%n) == tk_disk))) then
         o%part_shapes = k
         k = k + 1
+      end if
+      if (sc%meshes%n > 0) then
+        o%part_meshes = k
+        k = k + 1
+      end if
+      if (sc%cracks%nedges > 0) then
+        o%part_interfaces = k
+        o%part_cracks = k + 1
+        k = k + 2
       end if
       o%part_contacts = k
     end if
@@ -107,6 +120,7 @@ contains
     call h5_write_attr(o%h5%fid, 'gravity', deck%gravity)
     call results_write_bodies(o%h5, sc%bodies%number, sc%bodies%mass(1, :), sc%bodies%mass(3, :), &
                               sc%bodies%avrd, sc%bodies%ref)
+    if (sc%meshes%n > 0) call mesh_static(o, sc)
     allocate (law_names(size(sc%laws)))
     do k = 1, size(sc%laws)
       law_names(k) = sc%laws(k)%nickname
@@ -311,9 +325,129 @@ contains
       call write_shapes_vtu(o%display//'/shapes_'//num//'.vtu', sc, o%disk_points, o%vtk_single)
       call pvd_add(o%pvd, sc%time, 'shapes_'//num//'.vtu', part=o%part_shapes)
     end if
+    if (o%part_meshes >= 0) then
+      call write_meshes_vtu(o%display//'/meshes_'//num//'.vtu', sc, o%vtk_single)
+      call pvd_add(o%pvd, sc%time, 'meshes_'//num//'.vtu', part=o%part_meshes)
+    end if
+    if (o%part_interfaces >= 0) then
+      call write_interfaces_vtu(o%display//'/interfaces_'//num//'.vtu', sc, o%vtk_single)
+      call pvd_add(o%pvd, sc%time, 'interfaces_'//num//'.vtu', part=o%part_interfaces)
+      call write_cracks_vtu(o%display//'/cracks_'//num//'.vtu', sc, o%vtk_single)
+      call pvd_add(o%pvd, sc%time, 'cracks_'//num//'.vtu', part=o%part_cracks)
+    end if
     call write_contacts_vtu(o%display//'/contacts_'//num//'.vtu', sc, o%vtk_single)
     call pvd_add(o%pvd, sc%time, 'contacts_'//num//'.vtu', part=o%part_contacts)
   end subroutine output_vtk
+
+  !> Meshed bodies as an unstructured grid in the current configuration:
+  !> point data displacement and velocity; cell data (Gauss-point averages)
+  !> stress tensor (xx, yy, zz, xy as a symmetric 3x3), von Mises stress,
+  !> equivalent plastic strain, material, body.
+  subroutine write_meshes_vtu(path, sc, single)
+    character(len=*), intent(in) :: path
+    type(scene_t), intent(in) :: sc
+    logical, intent(in) :: single
+    type(vtu_t) :: w
+    real(wp), allocatable :: gp(:, :), stress(:, :), vm(:), p(:), avg(:)
+    integer(ik), allocatable :: conn(:), offs(:), types(:), body(:), mat(:)
+    integer :: e, b, ng, nn
+    associate (m => sc%meshes)
+      allocate (gp(size(m%gp, 1), size(m%gp, 2)))
+      call mailx_gauss_values(m, gp)
+      allocate (conn(size(m%el_nodes)), offs(m%nelem), types(m%nelem), body(m%nelem), mat(m%nelem), &
+                stress(6, m%nelem), vm(m%nelem), p(m%nelem))
+      do b = 1, m%n
+        do e = m%elem_first(b), m%elem_first(b + 1) - 1
+          nn = m%el_first(e + 1) - m%el_first(e)
+          ! VTK node order of the element, 0-based points
+          conn(m%el_first(e):m%el_first(e + 1) - 1) = &
+            int(m%el_nodes(m%el_first(e) - 1 + el_vtk_order(m%el_kind(e))) - 1, ik)
+          offs(e) = int(m%el_first(e + 1) - 1, ik)
+          types(e) = int(el_vtk_type(m%el_kind(e)), ik)
+          body(e) = int(b, ik)
+          mat(e) = int(m%el_mat(e), ik)
+          ng = m%el_gp(e + 1) - m%el_gp(e)
+          avg = sum(gp(:, m%el_gp(e):m%el_gp(e + 1) - 1), dim=2) / ng
+          ! symmetric tensor as ParaView reads it: xx, yy, zz, xy, yz, xz
+          stress(:, e) = [avg(gp_sxx), avg(gp_sxx + 1), avg(gp_szz), avg(gp_sxx + 2), 0.0_wp, 0.0_wp]
+          vm(e) = von_mises(avg(gp_sxx:gp_szz))
+          p(e) = avg(gp_p)
+        end do
+      end do
+      call vtu_begin(w, path, m%nnodes, m%nelem, time=sc%time, single=single)
+      call vtu_points(w, m%ref + m%x)
+      call vtu_cells(w, conn, offs, types)
+      call vtu_point_data(w, 'displacement', m%x)
+      call vtu_point_data(w, 'velocity', m%v)
+      call vtu_cell_data(w, 'stress', stress)
+      call vtu_cell_data(w, 'von_mises', vm)
+      call vtu_cell_data(w, 'plastic_strain', p)
+      call vtu_cell_data(w, 'material', mat)
+      call vtu_cell_data(w, 'body', body)
+      call vtu_end(w)
+    end associate
+  end subroutine write_meshes_vtu
+
+  !> Cohesive interfaces as lines (the candidate edge, current configuration)
+  !> with cell data beta (the lowest of its points), broken (1/0), damaged and
+  !> family (index in /mesh interface_families).
+  subroutine write_interfaces_vtu(path, sc, single)
+    character(len=*), intent(in) :: path
+    type(scene_t), intent(in) :: sc
+    logical, intent(in) :: single
+    type(vtu_t) :: w
+    real(wp), allocatable :: pts(:, :), beta(:)
+    integer(ik), allocatable :: nodes(:, :), broken(:), damaged(:), family(:)
+    integer :: e, j, ne
+    associate (cr => sc%cracks, m => sc%meshes)
+      ne = cr%nedges
+      allocate (pts(2, 2 * ne), nodes(2, ne), beta(ne), broken(ne), damaged(ne), family(ne))
+      do e = 1, ne
+        do j = 1, 2
+          pts(:, 2 * e - 2 + j) = m%ref(:, cr%edge_nodes(j, e)) + m%x(:, cr%edge_nodes(j, e))
+        end do
+        nodes(:, e) = [int(2 * e - 2, ik), int(2 * e - 1, ik)]
+        associate (p => cr%edge_pts(cr%edge_first(e):cr%edge_first(e + 1) - 1))
+          beta(e) = minval(cr%pt_beta(p), mask=cr%pt_glued(p), dim=1)
+          if (.not. any(cr%pt_glued(p))) beta(e) = 0.0_wp
+        end associate
+        broken(e) = merge(1_ik, 0_ik, cr%edge_broken_step(e) > 0)
+        damaged(e) = merge(1_ik, 0_ik, beta(e) < 1.0_wp)
+        family(e) = int(cr%edge_family(e), ik)
+      end do
+      call vtu_begin(w, path, 2 * ne, ne, time=sc%time, single=single)
+      call vtu_points(w, pts)
+      call vtu_cells_fixed(w, nodes, vtk_line)
+      call vtu_cell_data(w, 'beta', beta)
+      call vtu_cell_data(w, 'broken', broken)
+      call vtu_cell_data(w, 'damaged', damaged)
+      call vtu_cell_data(w, 'family', family)
+      call vtu_end(w)
+    end associate
+  end subroutine write_interfaces_vtu
+
+  !> Crack paths: the broken edges joined into cracks, as lines with the
+  !> crack number (1 = longest) and its length as cell data.
+  subroutine write_cracks_vtu(path, sc, single)
+    character(len=*), intent(in) :: path
+    type(scene_t), intent(in) :: sc
+    logical, intent(in) :: single
+    type(vtu_t) :: w
+    type(crack_paths_t) :: paths
+    integer :: ns
+    call cracks_paths(sc%cracks, sc%meshes, paths)
+    ns = size(paths%seg, 2)
+    call vtu_begin(w, path, size(paths%points, 2), ns, time=sc%time, single=single)
+    call vtu_points(w, paths%points)
+    call vtu_cells_fixed(w, int(paths%seg - 1, ik), vtk_line)
+    call vtu_cell_data(w, 'crack', int(paths%seg_crack, ik))
+    if (ns > 0) then
+      call vtu_cell_data(w, 'crack_length', paths%crack_length(paths%seg_crack))
+    else
+      call vtu_cell_data(w, 'crack_length', [real(wp) ::])
+    end if
+    call vtu_end(w)
+  end subroutine write_cracks_vtu
 
   !> Disks as points with their radius (and body state as point data).
   subroutine write_disks_vtu(path, sc, single)
@@ -494,8 +628,8 @@ contains
         status(k) = int(c%status(k), ik)
         inter(k) = int(c%inter(k), ik)
         law(k) = int(c%law(k), ik)
-        cdb(k) = int(sc%bodies%number(c%cdb(k)), ik)
-        anb(k) = int(sc%bodies%number(c%anb(k)), ik)
+        cdb(k) = int(c%cdb(k), ik)     ! body number within its model (cd_model, an_model)
+        anb(k) = int(c%anb(k), ik)
       end do
     end associate
     call vtu_begin(w, path, n, n, time=sc%time, single=single)
@@ -511,6 +645,10 @@ contains
     call vtu_point_data(w, 'law', law)
     call vtu_point_data(w, 'cd_body', cdb)
     call vtu_point_data(w, 'an_body', anb)
+    if (sc%meshes%n > 0) then
+      call vtu_point_data(w, 'cd_model', int(sc%contacts%cdm(1:n), ik))
+      call vtu_point_data(w, 'an_model', int(sc%contacts%anm(1:n), ik))
+    end if
     if (czm) then
       call vtu_point_data(w, 'beta', beta)
       call vtu_point_data(w, 'broken', broken_flags(sc))
@@ -651,24 +789,122 @@ contains
       gap_end = c%gap(1:n) + sc%h * c%u(2, 1:n)
       if (any(sc%laws%kind == law_czm)) then
         call results_write_snapshot(o%h5, sc%step, sc%time, sc%bodies%x, sc%bodies%v, c%inter(1:n), &
-          sc%bodies%number(c%cdb(1:n)), sc%bodies%number(c%anb(1:n)), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
+          c%cdb(1:n), c%anb(1:n), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
           c%status(1:n), c%law(1:n), c%normal(:, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end, &
           internals=c%internals(:, 1:n), broken=broken_flags(sc))
       else
         call results_write_snapshot(o%h5, sc%step, sc%time, sc%bodies%x, sc%bodies%v, c%inter(1:n), &
-          sc%bodies%number(c%cdb(1:n)), sc%bodies%number(c%anb(1:n)), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
+          c%cdb(1:n), c%anb(1:n), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
           c%status(1:n), c%law(1:n), c%normal(:, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end)
       end if
     end associate
+    if (sc%meshes%n > 0) call mesh_snapshot(o, sc)
+    if (sc%cracks%nedges > 0) call cracks_snapshot(o, sc)
   end subroutine output_snapshot
+
+  !> Cracks in the newest snapshot (group cracks): the crack paths (vertices
+  !> in the current configuration, segments, crack of each segment, length of
+  !> each crack, longest first), the main crack's origin and tip (reference
+  !> configuration), broken length per interface family (names in
+  !> /mesh/interface_families), and the fragments (fragment of each meshed body).
+  subroutine cracks_snapshot(o, sc)
+    type(output_t), intent(inout) :: o
+    type(scene_t), intent(in) :: sc
+    integer(hid_t) :: g, gc
+    type(crack_paths_t) :: paths
+    real(wp) :: crack, damaged, per_family(sc%cracks%nfamilies)
+    integer :: nbroken, ndamaged, nfrag
+    integer, allocatable :: piece(:)
+    call cracks_paths(sc%cracks, sc%meshes, paths)
+    call cracks_lengths(sc%cracks, crack, damaged, per_family, nbroken, ndamaged)
+    call cracks_fragments(sc%cracks, sc%meshes, piece, nfrag)
+    call results_last_snapshot(o%h5, g)
+    call h5_create_group(g, 'cracks', gc)
+    call h5_write_dataset(gc, 'points', paths%points)
+    call h5_write_dataset(gc, 'segments', int(paths%seg, ik))
+    call h5_write_dataset(gc, 'segment_crack', int(paths%seg_crack, ik))
+    call h5_write_dataset(gc, 'crack_length', paths%crack_length)
+    call h5_write_dataset(gc, 'main_origin', paths%origin)
+    call h5_write_dataset(gc, 'main_tip', paths%tip)
+    call h5_write_dataset(gc, 'broken_length_per_family', per_family)
+    call h5_write_dataset(gc, 'fragment_of_body', int(piece, ik))
+    call h5_write_attr(gc, 'fragments', nfrag)
+    call h5_close_group(gc)
+    call h5_close_group(g)
+  end subroutine cracks_snapshot
+
+  !> The meshed bodies' state in the newest snapshot: nodal displacements and
+  !> velocities (2, nodes), Gauss-point states (13, Gauss points: stress,
+  !> strain, plastic strain, p; see /mesh/gauss_point_fields), and the side
+  !> models of the contacts.
+  subroutine mesh_snapshot(o, sc)
+    type(output_t), intent(inout) :: o
+    type(scene_t), intent(in) :: sc
+    integer(hid_t) :: g
+    real(wp), allocatable :: gp(:, :)
+    allocate (gp(size(sc%meshes%gp, 1), size(sc%meshes%gp, 2)))
+    call mailx_gauss_values(sc%meshes, gp)
+    call results_last_snapshot(o%h5, g)
+    call h5_write_dataset(g, 'mesh_X', sc%meshes%x)
+    call h5_write_dataset(g, 'mesh_V', sc%meshes%v)
+    call h5_write_dataset(g, 'mesh_gauss_points', gp)
+    call h5_write_dataset(g, 'cd_model', int(sc%contacts%cdm(1:sc%contacts%n), ik))
+    call h5_write_dataset(g, 'an_model', int(sc%contacts%anm(1:sc%contacts%n), ik))
+    call h5_close_group(g)
+  end subroutine mesh_snapshot
+
+  !> Names separated by blanks.
+  pure function join(names) result(s)
+    character(len=*), intent(in) :: names(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ''
+    do i = 1, size(names)
+      s = s//trim(names(i))
+      if (i < size(names)) s = s//' '
+    end do
+  end function join
+
+  !> The meshes' fixed description in /mesh: reference node coordinates,
+  !> node and element ranges of each body, element kinds (VTK cell types),
+  !> connectivity (1-based mesh node numbers), materials.
+  subroutine mesh_static(o, sc)
+    type(output_t), intent(inout) :: o
+    type(scene_t), intent(in) :: sc
+    integer(hid_t) :: g
+    integer :: e
+    integer(ik), allocatable :: vtk(:)
+    associate (m => sc%meshes)
+      allocate (vtk(m%nelem))
+      do e = 1, m%nelem
+        vtk(e) = int(el_vtk_type(m%el_kind(e)), ik)
+      end do
+      call results_group(o%h5, 'mesh', g)
+      call h5_write_attr(g, 'plane', merge('stress', 'strain', m%plane == plane_stress))
+      call h5_write_attr(g, 'gauss_point_fields', 'sxx syy sxy szz exx eyy gxy ezz pxx pyy pgxy pzz p')
+      call h5_write_dataset(g, 'reference', m%ref)
+      call h5_write_dataset(g, 'body_first_node', int(m%node_first, ik))
+      call h5_write_dataset(g, 'body_first_element', int(m%elem_first, ik))
+      call h5_write_dataset(g, 'element_vtk_type', vtk)
+      call h5_write_dataset(g, 'element_first_node', int(m%el_first, ik))
+      call h5_write_dataset(g, 'element_nodes', int(m%el_nodes, ik))
+      call h5_write_dataset(g, 'element_first_gauss_point', int(m%el_gp, ik))
+      call h5_write_dataset(g, 'element_material', int(m%el_mat, ik))
+      if (sc%cracks%nfamilies > 0) call h5_write_attr(g, 'interface_families', join(sc%cracks%family_names))
+      call h5_close_group(g)
+    end associate
+  end subroutine mesh_static
 
   !> One row of the per-step series (same order as series_names).
   subroutine output_series(o, sc, rep)
     type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
     type(step_report_t), intent(in) :: rep
-    real(wp) :: balance, wgrav, wforces, wsupports
+    real(wp) :: balance, wgrav, wforces, wsupports, crack, damaged
+    real(wp) :: per_family(sc%cracks%nfamilies)
+    integer :: nbroken, ndamaged
     if (.not. o%h5_open) return
+    call cracks_lengths(sc%cracks, crack, damaged, per_family, nbroken, ndamaged)
     ! Rigid and meshed bodies together (kinetic0 holds the initial kinetic and
     ! elastic energy; meshes add their strain energy and plastic work).
     wgrav = sc%work_gravity + sc%meshes%work_gravity
@@ -682,7 +918,8 @@ contains
       rep%kinetic, wgrav, wforces, wsupports, sc%dissipated, sc%cohesive_energy, &
       sc%damage_dissipated, balance, &
       rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
-      sc%meshes%plastic_work, real(rep%newton_iterations, wp)])
+      sc%meshes%plastic_work, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
+      real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds])
     call postpro_step(o%pp, sc, rep)
     call flush_if_due(o)
   end subroutine output_series

@@ -32,3 +32,5 @@ endforeach()
 fracas_czm_case(rate ${_czm}/czm_rate ${_czm}/czm_rate/check.py quick)
 # Energy audit: a glued block pushed until the glue breaks, then sliding with friction.
 fracas_czm_case(energy ${_czm}/czm_energy ${_czm}/czm_energy/check.py quick)
+# Both blocks fully driven: the contacts exist and follow the law's closed form (issue 9).
+fracas_czm_case(driven_pair ${_czm}/czm_driven_pair ${_czm}/czm_driven_pair/check.py quick)

@@ -2,6 +2,10 @@
 
     fracas_tools.pre         Case/Scene: build a DATBOX deck and COMMAND.DAT
     fracas_tools.datbox      read DATBOX files back into Case objects
+    fracas_tools.mailx       meshed (MAILx) bodies, CLxxx/ALpxx contactors, MODELS.DAT models
+    fracas_tools.outbox      DOF / GPV / Vloc_Rloc files (.INI and .OUT.n), read and written
+    fracas_tools.postpro_deck  POSTPRO.DAT commands (node sets of meshes)
+    fracas_tools.mesh        gmsh meshes (.geo, .msh, API) -> MAILx bodies, exploded meshes
     fracas_tools.generators  seeded generators: disk deposits, polygons, walls, masonry, arches
     fracas_tools.post        read OUTBOX/fracas.h5, micro-mechanics, plots, report
     fracas_tools.synthetic   a synthetic fracas.h5 with the documented layout (tests, demos)
@@ -12,9 +16,11 @@ Run ``python3 -m fracas_tools --help`` for the command line.
 from .fortran_io import DatboxError
 from .pre import (Body, Case, ContactLaw, Disk, DrivenDof, Jonc, Material, Polygon, RunControl,
                   Scene, SeeRule, Xksid)
+from .mailx import Candidates, Element, MeshBody, Model, Polyline
 from .datbox import read_case
 
 __version__ = "0.1.0"
 
 __all__ = ["Case", "Scene", "Body", "Disk", "Xksid", "Jonc", "Polygon", "Material", "ContactLaw",
-           "SeeRule", "DrivenDof", "RunControl", "DatboxError", "read_case", "__version__"]
+           "SeeRule", "DrivenDof", "RunControl", "DatboxError", "read_case", "MeshBody", "Element",
+           "Candidates", "Polyline", "Model", "__version__"]

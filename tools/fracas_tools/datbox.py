@@ -13,11 +13,14 @@ from pathlib import Path
 import numpy as np
 
 from .fortran_io import DatboxError, field, parse_int, parse_real
+from .mailx import ELEMENT_NODES, Candidates, Element, MeshBody, Model, Polyline
+from .outbox import read_dof_file, read_gpv, read_vloc_rloc
+from .postpro_deck import read_postpro
 from .pre import (LAW_LAYOUT, Body, Case, ContactLaw, DrivenDof, Disk, Jonc, Material, Polygon,
                   RunControl, SeeRule, Xksid, polygon_area)
 
-__all__ = ["read_bodies", "read_bulk_behav", "read_tact_behav", "read_drv_dof", "read_dof",
-           "read_dof_ini", "read_command", "read_evolution", "read_case", "find_datbox"]
+__all__ = ["read_bodies", "read_bulk_behav", "read_models", "read_tact_behav", "read_drv_dof",
+           "read_dof", "read_dof_ini", "read_command", "read_evolution", "read_case", "find_datbox"]
 
 
 def _data_lines(path):
@@ -105,9 +108,114 @@ def _read_tactor(cur, ln, t):
     raise cur.err(ln, 2, f"unknown contactor type {kind!r} (DISKx, xKSID, JONCx, POLYG)")
 
 
+def _read_mesh_tactors(cur, tactors):
+    """Mesh contactors after $tacty, up to the next keyword: a CLxxx line and its
+    '+' lines make one Candidates, an ALpxx line and its '+' lines one Polyline
+    (LMGC90's echo BODIES.OUT writes every CLxxx point on its own line and leaves
+    the colour of '+' lines blank: both are read)."""
+    p = cur.path
+    while True:
+        lt, tt = cur.peek()
+        if tt is None or tt.startswith("$"):
+            return
+        cur.next("contactor")
+        kind = field(tt, 2, 6)
+        plus = tt.startswith("+")
+        if kind not in ("CLxxx", "ALpxx"):
+            raise cur.err(lt, 2, f"contactor type {kind!r} on a MAILx body (CLxxx or ALpxx)")
+        if plus and (not tactors or tactors[-1].kind != kind):
+            raise cur.err(lt, 1, f"'+{kind}' continuation line without a {kind} line before it")
+        color = field(tt, 23, 27)
+        if plus and not color.strip():
+            color = tactors[-1].color
+        a = parse_int(tt, 35, 39, p, lt, "noda")
+        b = parse_int(tt, 47, 51, p, lt, "nodb")
+        try:
+            if kind == "CLxxx":
+                pt = (a, b, parse_real(tt, 59, 72, p, lt, "apab", blank_ok=False))
+                if plus:
+                    tactors[-1].points.append(pt)
+                else:
+                    tactors.append(Candidates([pt], color))
+            elif plus:
+                if a != tactors[-1].nodes[-1]:
+                    raise cur.err(lt, 35, f"ALpxx segment starts at node {a}, the previous one "
+                                  f"ended at node {tactors[-1].nodes[-1]} (a polyline is continuous)")
+                tactors[-1].nodes.append(b)
+            else:
+                tactors.append(Polyline([a, b], color))
+        except ValueError as e:
+            if isinstance(e, DatboxError):
+                raise
+            raise cur.err(lt, 2, str(e)) from None
+
+
+def _read_mesh_body(cur, lm):
+    """The rest of a MAILx $bdyty record, after its model line."""
+    p = cur.path
+    elements, coords, tactors = [], [], []
+    while True:
+        lk, tk = cur.next("$$$$$$ (end of body)")
+        kw = _keyword(tk)
+        if kw == "$$$$$$":
+            break
+        if kw == "$blmty":
+            while True:
+                le, te = cur.peek()
+                if te is None or te.startswith("$"):
+                    break
+                cur.next("element")
+                kind = field(te, 2, 6)
+                if kind not in ELEMENT_NODES:
+                    raise cur.err(le, 2, f"element {kind!r}: one of {', '.join(ELEMENT_NODES)}")
+                if field(te, 16, 20) != "nodes":
+                    raise cur.err(le, 16, "expected 'nodes' at columns 16-20")
+                nodes = [parse_int(te, 21 + 7 * k, 27 + 7 * k, p, le, f"node {k + 1}")
+                         for k in range(ELEMENT_NODES[kind])]
+                lmod, tmod = cur.next(f"'model ... behav' line of the {kind} of line {le}")
+                if field(tmod, 16, 20) != "model" or field(tmod, 30, 34) != "behav":
+                    raise cur.err(lmod, 16, "expected 'model  XXXXX  behav  XXXXX' (columns 16-41)")
+                try:
+                    elements.append((le, Element(kind, nodes, field(tmod, 23, 27), field(tmod, 37, 41))))
+                except ValueError as e:
+                    raise cur.err(le, 2, str(e)) from None
+        elif kw == "$nodty":
+            while True:
+                lnn, tn = cur.peek()
+                if tn is None or tn.startswith("$"):
+                    break
+                cur.next("node")
+                if field(tn, 2, 6) != "NO2xx":
+                    raise cur.err(lnn, 2, f"expected a NO2xx node, found {field(tn, 2, 6)!r}")
+                k = parse_int(tn, 7, 13, p, lnn, "node number")
+                if k != len(coords) + 1:
+                    raise cur.err(lnn, 7, f"node {k}: nodes must be numbered 1, 2, ... in order "
+                                  f"(expected {len(coords) + 1})")
+                coords.append((parse_real(tn, 35, 48, p, lnn, "coo1"), parse_real(tn, 56, 69, p, lnn, "coo2")))
+        elif kw == "$tacty":
+            _read_mesh_tactors(cur, tactors)
+        else:
+            raise cur.err(lk, 1, f"unexpected line in body record: {tk.strip()[:30]!r}")
+    if not coords:
+        raise cur.err(lm, 1, "MAILx body without $nodty NO2xx nodes")
+    body = MeshBody(coords)
+    for le, e in elements:
+        try:
+            body.add_element(e)
+        except ValueError as err:
+            raise cur.err(le, 21, str(err)) from None
+    for c in tactors:
+        bad = [n for n in c.node_numbers() if not 1 <= n <= body.n_nodes]
+        if bad:
+            raise cur.err(lm, 1, f"{c.kind} contactor on nodes {bad} outside 1..{body.n_nodes}")
+    body.contactors = tactors
+    return body
+
+
 def read_bodies(path):
-    """BODIES.DAT -> list of pre.Body (numbered 1.. in order of appearance; avrd,
-    gyrd, node coordinates and contactors exactly as read)."""
+    """BODIES.DAT -> list of pre.Body (RBDY2) and mailx.MeshBody (MAILx), numbered
+    1.. within each model in order of appearance; avrd, gyrd, coordinates and
+    contactors exactly as read."""
     cur = _Cursor(path)
     bodies = []
     while cur.more():
@@ -117,8 +225,14 @@ def read_bodies(path):
             continue
         lm, tm = cur.next("body model line")
         model = field(tm, 2, 6)
+        if model == "MAILx":
+            body = _read_mesh_body(cur, lm)
+            body.number = sum(1 for b in bodies if b.model == model) + 1
+            body.source_line = lm
+            bodies.append(body)
+            continue
         if model != "RBDY2":
-            raise cur.err(lm, 2, f"body model {model!r}: only RBDY2 is supported")
+            raise cur.err(lm, 2, f"body model {model!r}: RBDY2 or MAILx")
         body = None
         behav = None
         avrd = gyrd = 0.0
@@ -162,7 +276,7 @@ def read_bodies(path):
         except ValueError as e:
             raise cur.err(lm, 1, str(e)) from None
         body.contactors = tactors
-        body.number = len(bodies) + 1
+        body.number = sum(1 for b in bodies if b.model == model) + 1
         body.source_line = lm
         bodies.append(body)
     return bodies
@@ -190,21 +304,65 @@ def read_bulk_behav(path):
             if not law:
                 raise cur.err(lb, 9, "missing bulk law name (columns 9-38)")
             dens = parse_real(tb, 46, 59, cur.path, lb, "Umas (density)")
-            # skip the continuation lines of non-rigid laws
+            # continuation lines: 'label: text' options and 'labl= value' numbers
+            items = []
             while True:
-                _, tc = cur.peek()
+                lc, tc = cur.peek()
                 if tc is None or tc.startswith("$") or tc[:6].strip():
                     break
                 cur.next("continuation")
+                if field(tc, 45, 45) == ":":
+                    items.append((field(tc, 41, 44), tc[46:].strip()))
+                else:
+                    items.append([(field(tc, cl, cl + 3), parse_real(tc, cv, cv + 13, cur.path, lc,
+                                                                      field(tc, cl, cl + 3).strip(),
+                                                                      blank_ok=False))
+                                  for cl, cv in ((41, 46), (62, 67))
+                                  if field(tc, cl, cv + 13).strip()])
             if name in mats:
                 raise cur.err(lb, 2, f"material {name!r} defined twice")
             try:
-                mats[name] = Material(name, dens, law)
+                mats[name] = Material(name, dens, law, items=items)
             except ValueError as e:
                 raise cur.err(lb, 2, str(e)) from None
         else:
             _top_level(cur, ln, t)
     return gravity, mats
+
+
+# --------------------------------------------------------------------------------------
+# MODELS.DAT
+# --------------------------------------------------------------------------------------
+
+def read_models(path):
+    """MODELS.DAT -> dict name -> mailx.Model (options in the order read)."""
+    cur = _Cursor(path)
+    models = {}
+    while cur.more():
+        ln, t = cur.next("$model")
+        if _keyword(t) != "$model":
+            _top_level(cur, ln, t)
+            continue
+        lname, tname = cur.next("model nickname line")
+        name = field(tname, 2, 6)
+        lp, tp = cur.next("physics and element line")
+        physics, element = field(tp, 9, 13), field(tp, 16, 20)
+        options = {}
+        lo, to = lp, tp
+        while True:
+            if field(to, 23, 27).strip():
+                options[field(to, 23, 27)] = to[29:].strip()
+            lo, to = cur.peek()
+            if to is None or to.startswith("$") or to[:22].strip():
+                break
+            cur.next("model option")
+        if name in models:
+            raise cur.err(lname, 2, f"model {name!r} defined twice")
+        try:
+            models[name] = Model(name, element, physics=physics, options=options)
+        except ValueError as e:
+            raise cur.err(lp, 9, str(e)) from None
+    return models
 
 
 # --------------------------------------------------------------------------------------
@@ -332,9 +490,11 @@ def read_evolution(path):
 
 
 def read_drv_dof(path, datbox_dir=None):
-    """DRV_DOF.DAT -> dict body number -> list of pre.DrivenDof. Evolution files are
-    loaded from ``datbox_dir`` (default: the folder of path) when they exist; their
-    text is kept so that writing the case again reproduces them unchanged."""
+    """DRV_DOF.DAT -> dict body -> list of pre.DrivenDof; the key is the body number
+    for RBDY2 bodies and ('MAILx', number) for meshed bodies, whose DrivenDof carry
+    their ``node``. Evolution files are loaded from ``datbox_dir`` (default: the
+    folder of path) when they exist; their text is kept so that writing the case
+    again reproduces them unchanged."""
     cur = _Cursor(path)
     datbox_dir = Path(datbox_dir) if datbox_dir is not None else Path(path).parent
     out = {}
@@ -344,17 +504,26 @@ def read_drv_dof(path, datbox_dir=None):
             _top_level(cur, ln, t)
             continue
         lm, tm = cur.next("body line")
-        if field(tm, 2, 6) != "RBDY2":
-            raise cur.err(lm, 2, f"body model {field(tm, 2, 6)!r}: only RBDY2 is supported")
+        model = field(tm, 2, 6)
+        if model not in ("RBDY2", "MAILx"):
+            raise cur.err(lm, 2, f"body model {model!r}: RBDY2 or MAILx")
         num = parse_int(tm, 7, 15, cur.path, lm, "body number")
-        lst = out.setdefault(num, [])
+        lst = out.setdefault(num if model == "RBDY2" else (model, num), [])
+        node = None
         while True:
             lk, tk = cur.next("$$$$$$ (end of body)")
             kw = _keyword(tk)
             if kw == "$$$$$$":
                 break
-            if kw == "$nodty":
-                cur.next("NO3xx line")
+            if kw == "$model":
+                cur.next("physics line")
+            elif kw == "$nodty":
+                lnn, tn = cur.next("node line")
+                want = "NO3xx" if model == "RBDY2" else "NO2xx"
+                if field(tn, 2, 6) != want:
+                    raise cur.err(lnn, 2, f"expected a {want} node line, found {field(tn, 2, 6)!r}")
+                if model == "MAILx":
+                    node = parse_int(tn, 7, 13, cur.path, lnn, "node number")
             elif kw == "$dofty":
                 while True:
                     ld, td = cur.peek()
@@ -365,8 +534,12 @@ def read_drv_dof(path, datbox_dir=None):
                     if kind not in ("vlocy", "force"):
                         raise cur.err(ld, 2, f"driven dof kind {kind!r}: 'vlocy' or 'force'")
                     dof = parse_int(td, 7, 13, cur.path, ld, "dof number")
-                    if dof not in (1, 2, 3):
+                    if model == "RBDY2" and dof not in (1, 2, 3):
                         raise cur.err(ld, 9, f"RBDY2 dof must be 1, 2 or 3, got {dof}")
+                    if model == "MAILx" and dof not in (1, 2):
+                        raise cur.err(ld, 9, f"a MAILx node has dofs 1 and 2, got {dof}")
+                    if model == "MAILx" and node is None:
+                        raise cur.err(ld, 1, "driven dof before the $nodty line of its node")
                     if field(td, 15, 23) == "evolution":
                         fname = td[24:64].strip()
                         if not fname:
@@ -384,6 +557,7 @@ def read_drv_dof(path, datbox_dir=None):
                                                    ("CT", "AMP", "OMEGA", "PHI", "RAMPI", "RAMP"))]
                         d = DrivenDof(dof, kind, *vals)
                     d.source_line = ld
+                    d.node = node
                     lst.append(d)
             else:
                 raise cur.err(lk, 1, f"unexpected line in DRV_DOF body record: {tk.strip()[:30]!r}")
@@ -395,42 +569,17 @@ def read_drv_dof(path, datbox_dir=None):
 # --------------------------------------------------------------------------------------
 
 def read_dof(path):
-    """DOF.INI or DOF.OUT.n -> (step, time, dict body number -> (X (3,), V (3,)))."""
-    cur = _Cursor(path)
-    step, time = 0, 0.0
+    """DOF.INI or DOF.OUT.n -> (step, time, states): states maps an RBDY2 body
+    number to (X (3,), V (3,)) and ('MAILx', number) to (X (n, 2), V (n, 2), nodes).
+    outbox.read_dof_file gives the records with their order and layout."""
+    d = read_dof_file(path)
     states = {}
-    while cur.more():
-        ln, t = cur.next("keyword")
-        kw = _keyword(t)
-        if kw == "$steps":
-            step = parse_int(t, 7, 15, cur.path, ln, "step")
-            time = parse_real(t, 35, 48, cur.path, ln, "time")
-        elif kw == "$bdyty":
-            lm, tm = cur.next("body line")
-            if field(tm, 2, 6) != "RBDY2":
-                raise cur.err(lm, 2, f"body model {field(tm, 2, 6)!r}: only RBDY2 is supported")
-            num = parse_int(tm, 7, 15, cur.path, lm, "body number")
-            x = v = None
-            while True:
-                lk, tk = cur.next("$$$$$$ (end of body)")
-                kw2 = _keyword(tk)
-                if kw2 == "$$$$$$":
-                    break
-                if kw2 == "$nodty":
-                    lx, tx = cur.next("X line")
-                    x = np.array([parse_real(tx, c, c + 13, cur.path, lx, f"X({k + 1})")
-                                  for k, c in enumerate((35, 56, 77))])
-                    lv, tv = cur.next("V line")
-                    v = np.array([parse_real(tv, c, c + 13, cur.path, lv, f"V({k + 1})")
-                                  for k, c in enumerate((35, 56, 77))])
-                else:
-                    raise cur.err(lk, 1, f"unexpected line in DOF body record: {tk.strip()[:30]!r}")
-            if x is None:
-                raise cur.err(lm, 1, "body record without $nodty")
-            states[num] = (x, v)
+    for r in d.records:
+        if r.model == "RBDY2":
+            states[r.number] = (r.x, r.v)
         else:
-            _top_level(cur, ln, t)
-    return step, time, states
+            states[(r.model, r.number)] = (r.x, r.v, r.nodes)
+    return d.step, d.time, states
 
 
 read_dof_ini = read_dof
@@ -495,27 +644,54 @@ def read_case(case_dir):
     case = Case()
     for b in read_bodies(d / "BODIES.DAT"):
         case.bodies.append(b)
+    if (d / "MODELS.DAT").exists():
+        case.models = read_models(d / "MODELS.DAT")
     if (d / "BULK_BEHAV.DAT").exists():
         case.gravity, case.materials = read_bulk_behav(d / "BULK_BEHAV.DAT")
     else:
         case.gravity = np.zeros(3)
     if (d / "TACT_BEHAV.DAT").exists():
         case.laws, case.see_rules = read_tact_behav(d / "TACT_BEHAV.DAT")
-    nb = len(case.bodies)
     if (d / "DRV_DOF.DAT").exists():
-        for num, lst in read_drv_dof(d / "DRV_DOF.DAT", d).items():
-            if not 1 <= num <= nb:
+        for key, lst in read_drv_dof(d / "DRV_DOF.DAT", d).items():
+            model, num = key if isinstance(key, tuple) else ("RBDY2", key)
+            try:
+                body = case.body(model, num)
+            except KeyError:
                 raise DatboxError(d / "DRV_DOF.DAT", lst[0].source_line if lst else 0, 9,
-                                  f"driven body {num} does not exist ({nb} bodies)")
-            case.bodies[num - 1].driven.extend(lst)
+                                  f"driven body {model} {num} does not exist") from None
+            for dd in lst:
+                if dd.node is not None and not 1 <= dd.node <= body.n_nodes:
+                    raise DatboxError(d / "DRV_DOF.DAT", dd.source_line, 9,
+                                      f"MAILx {num} has {body.n_nodes} nodes, no node {dd.node}")
+            body.driven.extend(lst)
     if (d / "DOF.INI").exists():
-        step, time, states = read_dof(d / "DOF.INI")
-        case.dof_step, case.dof_time = step, time
-        for num, (x, v) in states.items():
-            if not 1 <= num <= nb:
-                raise DatboxError(d / "DOF.INI", 0, 9, f"body {num} does not exist ({nb} bodies)")
-            case.bodies[num - 1].x0 = x
-            case.bodies[num - 1].v0 = v
+        dof = read_dof_file(d / "DOF.INI")
+        case.dof_step, case.dof_time = dof.step, dof.time
+        for r in dof.records:
+            try:
+                body = case.body(r.model, r.number)
+            except KeyError:
+                raise DatboxError(d / "DOF.INI", 0, 9, f"body {r.model} {r.number} does not exist") from None
+            if r.model == "MAILx":
+                idx = np.array(r.nodes, dtype=int) - 1
+                if len(idx) and (idx.min() < 0 or idx.max() >= body.n_nodes):
+                    raise DatboxError(d / "DOF.INI", 0, 9, f"MAILx {r.number}: node numbers outside "
+                                      f"1..{body.n_nodes}")
+                body.x0[idx] = r.x
+                body.v0[idx] = r.v
+            else:
+                body.x0, body.v0 = r.x, r.v
+    if (d / "Vloc_Rloc.INI").exists():
+        v = read_vloc_rloc(d / "Vloc_Rloc.INI")
+        if v.records:
+            case.vloc_ini = v
+    if (d / "GPV.INI").exists():
+        g = read_gpv(d / "GPV.INI")
+        if g.bodies:
+            case.gpv_ini = g
+    if (d / "POSTPRO.DAT").exists():
+        case.postpro = read_postpro(d / "POSTPRO.DAT")
     if (d / "COMMAND.DAT").exists():
         case.run = read_command(d / "COMMAND.DAT")
     return case

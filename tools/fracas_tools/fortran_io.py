@@ -38,13 +38,16 @@ def d14(x):
     x = float(x)
     if not math.isfinite(x):
         raise ValueError(f"cannot write a non-finite number ({x}) in a DATBOX file")
+    sign = "-" if math.copysign(1.0, x) < 0 else " "     # Fortran keeps the sign of -0.0
     if x == 0.0:
-        return " 0.0000000D+00"
+        return f"{sign}0.0000000D+00"
     m = "%.6E" % abs(x)           # d.ddddddE+xx, 7 significant digits
     digits = m[0] + m[2:8]
-    expo = int(m[9:]) + 1
-    sign = "-" if x < 0 else " "
-    return f"{sign}0.{digits}D{'+' if expo >= 0 else '-'}{abs(expo):02d}"
+    expo = int(m[m.index("E") + 1:]) + 1
+    esign = "+" if expo >= 0 else "-"
+    if abs(expo) >= 100:          # Fortran drops the letter: 0.1234567-100
+        return f"{sign}0.{digits}{esign}{abs(expo):03d}"
+    return f"{sign}0.{digits}D{esign}{abs(expo):02d}"
 
 
 def field(line, c1, c2):

@@ -25,11 +25,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .fortran_io import d14, e14
+from .fortran_io import e14
 
 __all__ = [
     "Case", "Scene", "Body", "Disk", "Xksid", "Jonc", "Polygon", "Material", "ContactLaw",
-    "SeeRule", "DrivenDof", "RunControl", "LAW_LAYOUT", "COMMAND_KEYWORDS",
+    "SeeRule", "DrivenDof", "RunControl", "LAW_LAYOUT", "BULK_LAYOUT", "COMMAND_KEYWORDS",
     "polygon_area", "polygon_centroid", "polygon_polar_moment", "is_convex",
 ]
 
@@ -239,6 +239,7 @@ class DrivenDof:
         if kind not in ("vlocy", "force"):
             raise ValueError(f"driven dof kind must be 'vlocy' or 'force', got {kind!r}")
         self.dof, self.kind = int(dof), kind
+        self.node = None             # node number (1-based) on a MAILx body; None on RBDY2
         self.ct, self.amp, self.omega, self.phi = float(ct), float(amp), float(omega), float(phi)
         self.rampi, self.ramp = float(rampi), float(ramp)
         self.evolution = evolution
@@ -278,6 +279,8 @@ class DrivenDof:
         return f" {self.kind}{self.dof:7d}" + "".join(" " + e14(x) for x in vals)
 
     def __repr__(self):
+        if self.node is not None:
+            return f"DrivenDof(node={self.node}, {self.dof}, {self.kind!r}, ct={self.ct}, ramp={self.ramp})"
         if self.evolution:
             return f"DrivenDof({self.dof}, {self.kind!r}, evolution={self.evolution!r})"
         return (f"DrivenDof({self.dof}, {self.kind!r}, ct={self.ct}, amp={self.amp}, "
@@ -410,18 +413,98 @@ class Body:
 # materials, laws, see rules
 # --------------------------------------------------------------------------------------
 
-class Material:
-    """A bulk behaviour of BULK_BEHAV.DAT ('RIGID' with a density for rigid bodies)."""
+#: Continuation lines of the bulk laws, as pylmgc90 writes them: an option line
+#: ('elas', 'standard') or a line of one or two numbers [labels]. Numbers are
+#: given by keyword: young (EYng), poisson (Epss), yield_stress (SIG0), hardening
+#: (K___, linear isotropic hardening: sigma_y = SIG0 + K___ p).
+BULK_LAYOUT = {
+    "RIGID": [],
+    "ELAS": [("elas", "standard"), ("ani_", "isotropic"), ["EYng", "Epss"]],
+    "ELAS_PLAS": [("elas", "standard"), ("ani_", "isotropic"), ["EYng", "Epss"],
+                  ("crit", "Von-Mises"), ("isoh", "linear"), ["SIG0", "K___"],
+                  ("cinh", "none"), ("visc", "none")],
+}
+_BULK_KEYS = {"young": "EYng", "poisson": "Epss", "yield_stress": "SIG0", "hardening": "K___"}
 
-    def __init__(self, name, density, law="RIGID"):
+
+class Material:
+    """A bulk behaviour of BULK_BEHAV.DAT: 'RIGID' with a density for rigid bodies,
+    'ELAS' (young, poisson) or 'ELAS_PLAS' (young, poisson, yield_stress, hardening:
+    von Mises with linear isotropic hardening) for meshed bodies.
+
+    ``items`` holds the continuation lines in order: ('label', 'text') options and
+    lists of (label, value) numbers; a file read back keeps them as read, so unknown
+    laws and options are rewritten unchanged."""
+
+    def __init__(self, name, density, law="RIGID", items=None, **params):
         self.name = _check_name(name, "material")
         self.law = law
         self.density = float(density)
         if len(law) > 30:
             raise ValueError("bulk law name longer than 30 characters")
+        if items is not None:
+            if params:
+                raise ValueError("give either items or parameters")
+            self.items = [i if isinstance(i, tuple) else [(l, float(v)) for l, v in i] for i in items]
+            return
+        unknown = set(params) - set(_BULK_KEYS)
+        if unknown:
+            raise ValueError(f"unknown material parameters {sorted(unknown)}; known: {list(_BULK_KEYS)}")
+        if law not in BULK_LAYOUT:
+            if params:
+                raise ValueError(f"bulk law {law}: parameters by keyword only for "
+                                 f"{', '.join(BULK_LAYOUT)} (else give items)")
+            self.items = []
+            return
+        labels = {_BULK_KEYS[k]: v for k, v in params.items()}
+        need = [l for line in BULK_LAYOUT[law] if isinstance(line, list) for l in line]
+        missing = [k for k, l in _BULK_KEYS.items() if l in need and l not in labels]
+        extra = [k for k, l in _BULK_KEYS.items() if l in labels and l not in need]
+        if missing or extra:
+            raise ValueError(f"bulk law {law}: "
+                             + (f"missing {missing} " if missing else "")
+                             + (f"unexpected {extra}" if extra else ""))
+        self.items = [line if isinstance(line, tuple) else [(l, float(labels[l])) for l in line]
+                      for line in BULK_LAYOUT[law]]
+        if law != "RIGID":
+            if not self.young > 0.0:
+                raise ValueError(f"material {name}: young must be positive")
+            if not -1.0 < self.poisson < 0.5:
+                raise ValueError(f"material {name}: poisson must be in (-1, 0.5)")
+
+    def param(self, label):
+        """A number by its label ('EYng', 'Epss', 'SIG0', 'K___'; case-insensitive)."""
+        for it in self.items:
+            if isinstance(it, list):
+                for lab, v in it:
+                    if lab.lower() == label.lower():
+                        return v
+        return None
+
+    def option(self, label):
+        """An option by its label ('elas', 'ani_', 'crit', 'isoh' ...)."""
+        for it in self.items:
+            if isinstance(it, tuple) and it[0].lower() == label.lower():
+                return it[1]
+        return None
+
+    young = property(lambda self: self.param("EYng"))
+    poisson = property(lambda self: self.param("Epss"))
+    yield_stress = property(lambda self: self.param("SIG0"))
+    hardening = property(lambda self: self.param("K___"))
+
+    def lines(self):
+        out = [f" {self.name}  {self.law.ljust(30)}  Umas={e14(self.density)}"]
+        for it in self.items:
+            if isinstance(it, tuple):
+                out.append(" " * 40 + f"{it[0]}: {it[1]:<13}")
+            else:
+                out.append(" " * 40 + "  ".join(f"{lab}={e14(v)}" for lab, v in it))
+        return out
 
     def __repr__(self):
-        return f"Material({self.name!r}, density={self.density!r}, law={self.law!r})"
+        extra = "".join(f", {k}={getattr(self, k)!r}" for k in _BULK_KEYS if getattr(self, k) is not None)
+        return f"Material({self.name!r}, density={self.density!r}, law={self.law!r}{extra})"
 
 
 class ContactLaw:
@@ -530,10 +613,16 @@ COMMAND_KEYWORDS = {
     "nlgs_unconverged": ("warn", "fail", "stop"),
     "output_vtk_disks": ("points", "polygons"),
     "output_vtk_precision": ("single", "double"),
+    # meshed bodies
+    "plane": ("strain", "stress"),
+    "newton_tolerance": float,
+    "newton_max_iterations": int,
+    "linear_solver": ("auto", "dense", "cholmod"),
 }
 
 _POSITIVE = {"time_step", "number_of_steps", "final_time", "detection_frequency",
-             "nlgs_tolerance", "nlgs_sweeps_per_check", "nlgs_max_checks"}
+             "nlgs_tolerance", "nlgs_sweeps_per_check", "nlgs_max_checks",
+             "newton_tolerance", "newton_max_iterations"}
 _NONNEGATIVE = {"output_dof_every", "output_vtk_every", "output_hdf5_every", "progress_every"}
 
 
@@ -631,40 +720,56 @@ class RunControl:
 # the case
 # --------------------------------------------------------------------------------------
 
-_HEADER_RULE = "!" + "-" * 71
-
-
-def _steps_line(step, time):
-    # pylmgc90.pre writes step 0 right after '$steps' (cols 7-13); LMGC90's Fortran
-    # writers use A6,2X,I7 (cols 9-15). Both read the same with I7 at 9-15.
-    if step == 0:
-        return f"$steps{step:7d}                time={d14(time)}"
-    return f"$steps  {step:7d}              time={d14(time)}"
+_DOF_HEADER = ("$dofty  numbr [CT......+......AMP..*..cos.(..OMEGA.*.time.+.PHI..)]...*..."
+               "[RAMPI.....+.....RAMP.*.time]")
 
 
 class Case:
     """A complete case: DATBOX content plus run control.
 
     Attributes: gravity (3 values), materials (dict name -> Material), laws (dict
-    name -> ContactLaw), see_rules (list), bodies (list of Body, serial number =
-    position + 1), run (RunControl), dof_step/dof_time (DOF.INI header)."""
+    name -> ContactLaw), see_rules (list), bodies (list of Body (RBDY2) and
+    MeshBody (MAILx) in file order; numbered 1.. within each model, as LMGC90
+    does), models (dict name -> Model, MODELS.DAT), run (RunControl),
+    dof_step/dof_time (DOF.INI header), postpro (PostPro or None: POSTPRO.DAT),
+    vloc_ini / gpv_ini (VlocRloc / GpvFile read from Vloc_Rloc.INI / GPV.INI, or
+    None: header only)."""
 
     def __init__(self, gravity=(0.0, -9.81, 0.0)):
         g = list(gravity) + [0.0] * (3 - len(gravity))
         self.gravity = np.array(g[:3], dtype=float)
         self.materials = {}
+        self.models = {}
         self.laws = {}
         self.see_rules = []
         self.bodies = []
         self.run = RunControl()
         self.dof_step, self.dof_time = 0, 0.0
+        self.postpro = None
+        self.vloc_ini = None
+        self.gpv_ini = None
 
     # -- materials, laws, rules --
-    def add_material(self, name, density, law="RIGID"):
+    def add_material(self, name, density, law="RIGID", **params):
+        """A bulk material: add_material('STONE', 2600.0) (rigid),
+        add_material('BLOCK', 2000.0, 'ELAS', young=1e9, poisson=0.3),
+        add_material('STEEL', 7800.0, 'ELAS_PLAS', young=2e11, poisson=0.3,
+        yield_stress=2e8, hardening=2e9)."""
         if name in self.materials:
             raise ValueError(f"material {name!r} already defined")
-        m = Material(name, density, law)
+        m = Material(name, density, law, **params)
         self.materials[name] = m
+        return m
+
+    def add_model(self, name, element, **options):
+        """A MODELS.DAT model for meshed bodies, e.g. add_model('M2DT3', 'T3xxx')
+        (small strain, elastic, lumped mass), add_model('M2DJ2', 'Q4P0x',
+        kinematic='large', formulation='UpdtL', material='J2iso'); see mailx.Model."""
+        from .mailx import Model
+        if name in self.models:
+            raise ValueError(f"model {name!r} already defined")
+        m = Model(name, element, **options)
+        self.models[name] = m
         return m
 
     def add_law(self, name, law, **params):
@@ -679,10 +784,15 @@ class Case:
         self.laws[name] = c
         return c
 
-    def add_see(self, cdtac, cdcol, antac, ancol, law, alert, cdbdy="RBDY2", anbdy="RBDY2",
+    def add_see(self, cdtac, cdcol, antac, ancol, law, alert, cdbdy=None, anbdy=None,
                 global_alert=None):
         """Candidate contactors (cdtac, cdcol) see antagonists (antac, ancol) through
-        contact law ``law`` (name or ContactLaw) within distance ``alert``."""
+        contact law ``law`` (name or ContactLaw) within distance ``alert``. The body
+        models default to MAILx for CLxxx/ALpxx contactors, RBDY2 otherwise."""
+        def model_of(tac):
+            return "MAILx" if tac in ("CLxxx", "ALpxx") else "RBDY2"
+        cdbdy = cdbdy or model_of(cdtac)
+        anbdy = anbdy or model_of(antac)
         name = law.name if isinstance(law, ContactLaw) else law
         r = SeeRule(cdtac, cdcol, name, antac, ancol, alert, cdbdy, anbdy, global_alert)
         self.see_rules.append(r)
@@ -706,9 +816,51 @@ class Case:
         return self.append(b)
 
     def append(self, body):
+        """Add a Body or MeshBody; its number is its rank within its model."""
         self.bodies.append(body)
-        body.number = len(self.bodies)
+        body.number = sum(1 for b in self.bodies if b.model == body.model)
         return body
+
+    def body(self, model, number):
+        """The body ``number`` of ``model`` ('RBDY2' or 'MAILx')."""
+        for b in self.bodies:
+            if b.model == model and b.number == number:
+                return b
+        raise KeyError(f"no {model} body {number}")
+
+    def mesh_bodies(self):
+        return [b for b in self.bodies if b.model == "MAILx"]
+
+    def add_mesh_body(self, nodes, elements=(), model=None, material=None):
+        """A MAILx body from nodes (n, 2) and elements: Element objects, or node
+        lists (1-based; kind from the node count: 3 T3xxx, 4 Q4xxx, 6 T6xxx,
+        8 Q8xxx) given ``model`` and ``material``. Add contactors with
+        body.add_candidates / add_polyline (see fracas_tools.mesh for gmsh meshes)."""
+        from .mailx import ELEMENT_NODES, Element, MeshBody
+        kinds = {n: k for k, n in ELEMENT_NODES.items()}
+        b = MeshBody(nodes)
+        for e in elements:
+            if not isinstance(e, Element):
+                e = Element(kinds.get(len(e), "?"), e, model, material)
+            b.add_element(e)
+        return self.append(b)
+
+    def add_mesh(self, mesh, material, model=None, bodies=None):
+        """MAILx bodies from a mesh.Mesh2D (e.g. mesh.mesh_geo('part.geo')): one
+        body per connected part of each physical surface (or per group of phases in
+        ``bodies``); ``material``/``model`` a nickname or {phase: nickname}; model
+        None adds default models M2DT3/M2DQ4/M2DT6/M2DQ8. Physical curves and points
+        become body.groups / body.edge_groups. Returns the list of bodies."""
+        from .mesh import build_bodies
+        return build_bodies(self, mesh, material, model, bodies)
+
+    def add_exploded_mesh(self, mesh, material, model=None, **options):
+        """One MAILx body per element of a mesh.Mesh2D, every shared edge glued by a
+        CLxxx/ALpxx pair coloured by its interface family; see mesh.explode for
+        the options (apab, cracks, color, boundary_color, group_copies). Returns a
+        mesh.Exploded (bodies, families, counts)."""
+        from .mesh import explode
+        return explode(self, mesh, material, model, **options)
 
     def add_disk(self, center, radius, material, color="BLEUx"):
         """A rigid disk (DISKx) centred at ``center``."""
@@ -752,6 +904,9 @@ class Case:
         """Consistency checks; returns a list of warnings, raises on errors."""
         warns = []
         for b in self.bodies:
+            if b.model == "MAILx":
+                self._check_mesh_body(b)
+                continue
             if b.material not in self.materials:
                 raise ValueError(f"body {b.number}: material {b.material!r} is not defined "
                                  f"(add_material)")
@@ -779,10 +934,46 @@ class Case:
                 warns.append(f"contact law {name!r} is used by no see rule")
         return warns
 
+    def _check_mesh_body(self, b):
+        if not b.elements:
+            raise ValueError(f"MAILx {b.number} has no element")
+        for m in b.materials():
+            if m not in self.materials:
+                raise ValueError(f"MAILx {b.number}: material {m!r} is not defined (add_material)")
+            if self.materials[m].law == "RIGID":
+                raise ValueError(f"MAILx {b.number}: material {m!r} is RIGID; meshed bodies need "
+                                 f"ELAS or ELAS_PLAS")
+        for m in b.model_names():
+            if m not in self.models:
+                raise ValueError(f"MAILx {b.number}: model {m!r} is not defined (add_model)")
+        # as the solver's MODELS.DAT check: the model suits the element's geometry,
+        # the material law suits the model's 'mater' option
+        for e in b.elements:
+            model = self.models[e.model]
+            geometry = "Q4xxx" if model.element == "Q4P0x" else model.element
+            if geometry != e.kind:
+                raise ValueError(f"MAILx {b.number}: model {e.model!r} ({model.element}) is not for "
+                                 f"{e.kind} elements")
+            need = "ELAS_PLAS" if model.options.get("mater") == "J2iso" else "ELAS"
+            if self.materials[e.material].law != need:
+                raise ValueError(f"MAILx {b.number}: material {e.material!r} "
+                                 f"({self.materials[e.material].law}) does not suit model {e.model!r}: "
+                                 f"'mater {model.options.get('mater')}' needs an {need} material")
+        seen = set()
+        for d in b.driven:
+            if d.dof not in (1, 2):
+                raise ValueError(f"MAILx {b.number} node {d.node}: dof {d.dof} (a node has dofs 1, 2)")
+            if (d.node, d.kind, d.dof) in seen:
+                raise ValueError(f"MAILx {b.number} node {d.node}: dof {d.dof} driven twice ({d.kind})")
+            seen.add((d.node, d.kind, d.dof))
+
     # -- text of each file --
     def bodies_text(self):
         out = []
         for b in self.bodies:
+            if b.model == "MAILx":
+                out += b.bodies_lines()
+                continue
             av, gy = b.radii()
             out += ["$bdyty", f" {b.model}{b.number:7d}", "$blmty",
                     f" PLAIN      1  behav  {b.material}  avrd={e14(av, 'E')}  gyrd={e14(gy, 'E')}",
@@ -809,7 +1000,18 @@ class Case:
                " " * 19 + f"grv1={e14(self.gravity[0])}  grv2={e14(self.gravity[1])}"
                f"  grv3={e14(self.gravity[2])}"]
         for m in self.materials.values():
-            out += ["$behav  lawty", f" {m.name}  {m.law.ljust(30)}  Umas={e14(m.density)}"]
+            out += ["$behav  lawty"] + m.lines()
+        out.append("      ")
+        return "\n".join(out) + "\n"
+
+    def models_text(self):
+        out = ["! File MODELS (written by fracas_tools)",
+               "!",
+               "! '$model': nickname (columns 2-6) on its own line, then physics (9-13),",
+               "!           finite element (16-20), options (23-27) and values (30-).",
+               ""]
+        for m in self.models.values():
+            out += m.lines()
         out.append("      ")
         return "\n".join(out) + "\n"
 
@@ -827,41 +1029,51 @@ class Case:
         for b in self.bodies:
             if not b.driven:
                 continue
+            if b.model == "MAILx":
+                out += b.drv_dof_lines(_DOF_HEADER)
+                continue
             # pylmgc90 ends the number at column 13; LMGC90 reads I7 at 9-15, so
             # numbers of 6 digits or more use that layout
             num = f"{b.number:7d}" if b.number < 100000 else f"  {b.number:7d}"
-            out += ["$bdyty", f" {b.model}{num}", "$nodty", " NO3xx      1",
-                    "$dofty  numbr [CT......+......AMP..*..cos.(..OMEGA.*.time.+.PHI..)]...*..."
-                    "[RAMPI.....+.....RAMP.*.time]"]
+            out += ["$bdyty", f" {b.model}{num}", "$nodty", " NO3xx      1", _DOF_HEADER]
             out += [d.line() for d in b.driven]
             out += ["$$$$$$", ""]
         out.append("      ")
         return "\n".join(out) + "\n"
 
     def dof_ini_text(self):
-        out = ["", "! DOF", "", _steps_line(self.dof_step, self.dof_time), "", _HEADER_RULE]
+        """DOF.INI: the bodies with a non-zero initial state (all nodes of a MAILx body)."""
+        from .outbox import DofFile, DofRecord
+        d = DofFile(self.dof_step, self.dof_time, style="pre")
         for b in self.bodies:
-            if not (np.any(b.x0 != 0.0) or np.any(b.v0 != 0.0)):
-                continue
-            x, v = b.x0, b.v0
-            out += ["$bdyty", f" {b.model}  {b.number:7d}", "$nodty",
-                    " NO3xx      1" + " " * 16 + f"X(1)={e14(x[0])}  X(2)={e14(x[1])}  X(3)={e14(x[2])}",
-                    " " * 29 + f"V(1)={e14(v[0])}  V(2)={e14(v[1])}  V(3)={e14(v[2])}",
-                    "$$$$$$"]
-        out.append("      ")
-        return "\n".join(out) + "\n"
+            if b.model == "MAILx":
+                if b.has_state():
+                    d.records.append(DofRecord("MAILx", b.number, b.x0, b.v0,
+                                               list(range(1, b.n_nodes + 1)), b.physics))
+            elif np.any(b.x0 != 0.0) or np.any(b.v0 != 0.0):
+                d.records.append(DofRecord(b.model, b.number, b.x0, b.v0))
+        return d.text()
 
     def vloc_rloc_ini_text(self):
-        out = ["", "! Vloc_Rloc", "", _steps_line(self.dof_step, self.dof_time), "", _HEADER_RULE,
-               "      "]
-        return "\n".join(out) + "\n"
+        from .outbox import VlocRloc
+        v = self.vloc_ini if self.vloc_ini is not None else VlocRloc(self.dof_step, self.dof_time,
+                                                                     style="pre")
+        return v.text()
+
+    def gpv_ini_text(self):
+        from .outbox import GpvFile
+        g = self.gpv_ini if self.gpv_ini is not None else GpvFile(self.dof_step, self.dof_time,
+                                                                  style="pre")
+        return g.text()
 
     def command_text(self):
         return "\n".join(self.run.lines()) + "\n"
 
     def write(self, case_dir, command=None):
         """Write case_dir/DATBOX/{BODIES.DAT, BULK_BEHAV.DAT, TACT_BEHAV.DAT,
-        DRV_DOF.DAT, DOF.INI, Vloc_Rloc.INI, COMMAND.DAT} and the evolution files.
+        DRV_DOF.DAT, DOF.INI, Vloc_Rloc.INI, COMMAND.DAT} and the evolution files;
+        with meshed bodies also MODELS.DAT (when models exist) and GPV.INI, and
+        POSTPRO.DAT when case.postpro is set.
         COMMAND.DAT is written when run settings exist (command=None) or always
         (command=True, an error if time_step/number_of_steps are missing) or
         never (command=False). Returns the DATBOX path."""
@@ -876,6 +1088,12 @@ class Case:
         files = {"BODIES.DAT": self.bodies_text(), "BULK_BEHAV.DAT": self.bulk_behav_text(),
                  "TACT_BEHAV.DAT": self.tact_behav_text(), "DRV_DOF.DAT": self.drv_dof_text(),
                  "DOF.INI": self.dof_ini_text(), "Vloc_Rloc.INI": self.vloc_rloc_ini_text()}
+        if self.models:
+            files["MODELS.DAT"] = self.models_text()
+        if self.mesh_bodies() or self.gpv_ini is not None:
+            files["GPV.INI"] = self.gpv_ini_text()
+        if self.postpro is not None:
+            files["POSTPRO.DAT"] = self.postpro.text()
         if command:
             files["COMMAND.DAT"] = self.command_text()
         for b in self.bodies:
@@ -914,11 +1132,16 @@ class Case:
         kinds = {}
         for b in self.bodies:
             k = "+".join(sorted({c.kind for c in b.contactors}))
+            if b.model == "MAILx":
+                k = "MAILx" + (f" ({k})" if k else "")
             kinds[k] = kinds.get(k, 0) + 1
         lines = [f"{len(self.bodies)} bodies: " + ", ".join(f"{n} {k}" for k, n in kinds.items()),
                  f"gravity: {tuple(float(g) for g in self.gravity)}",
                  "materials: " + ", ".join(f"{m.name} ({m.law}, {m.density:g})"
                                            for m in self.materials.values()),
+                 *([ "models: " + ", ".join(f"{m.name} ({m.element})" for m in self.models.values())]
+                   if self.models else []),
+                 *self._mesh_summary(),
                  "laws: " + ", ".join(f"{l.name} {l.law} " +
                                       " ".join(f"{k}={v:g}" for k, v in l.params.items())
                                       for l in self.laws.values()),
@@ -928,6 +1151,18 @@ class Case:
                  f"{sum(1 for b in self.bodies if np.any(b.x0 != 0) or np.any(b.v0 != 0))}",
                  "run: " + (", ".join(f"{k}={v}" for k, v in self.run.values.items()) or "(none)")]
         return "\n".join(lines)
+
+    def _mesh_summary(self):
+        meshes = self.mesh_bodies()
+        if not meshes:
+            return []
+        kinds = {}
+        for b in meshes:
+            for e in b.elements:
+                kinds[e.kind] = kinds.get(e.kind, 0) + 1
+        return [f"MAILx: {len(meshes)} bodies, {sum(b.n_nodes for b in meshes)} nodes, "
+                + ", ".join(f"{n} {k}" for k, n in kinds.items())
+                + f", {sum(len(b.tactors()) for b in meshes)} contactors"]
 
     def __repr__(self):
         return (f"Case({len(self.bodies)} bodies, {len(self.materials)} materials, "

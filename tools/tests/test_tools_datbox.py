@@ -319,6 +319,17 @@ def _data_lines(path):
     return [l for l in Path(path).read_text().splitlines() if l.strip() and not l.startswith(("!", "#"))]
 
 
+def _echo_tactor_ranks(path):
+    """Per body of an echo BODIES.OUT, the contactor numbers of its non-'+' lines."""
+    out = []
+    for line in Path(path).read_text().splitlines():
+        if line.startswith("$bdyty"):
+            out.append([])
+        elif line[1:6] in ("CLxxx", "ALpxx", "DISKx", "JONCx", "POLYG", "xKSID") and line[0] == " ":
+            out[-1].append(int(line[6:13]))
+    return out
+
+
 @needs_decks
 @pytest.mark.parametrize("name", DECK_NAMES)
 def test_lmgc90_deck_rewritten_identically(name, tmp_path):
@@ -326,10 +337,17 @@ def test_lmgc90_deck_rewritten_identically(name, tmp_path):
     with pytest.warns(UserWarning, match="COMMAND.DAT"):
         case.write(tmp_path, command=False)
     src = DECKS / name / "DATBOX"
-    for f in ("BODIES.DAT", "TACT_BEHAV.DAT", "DRV_DOF.DAT", "DOF.INI", "Vloc_Rloc.INI"):
-        assert (tmp_path / "DATBOX" / f).read_bytes() == (src / f).read_bytes(), f
-    # BULK_BEHAV.DAT: our own comment header, the records column for column
-    assert _data_lines(tmp_path / "DATBOX" / "BULK_BEHAV.DAT") == _data_lines(src / "BULK_BEHAV.DAT")
+    written = sorted(p.name for p in (tmp_path / "DATBOX").iterdir())
+    assert written == sorted(p.name for p in src.iterdir() if p.suffix in (".DAT", ".INI")
+                             or p.name in {d.evolution for b in case.bodies for d in b.driven})
+    for f in ("BODIES.DAT", "TACT_BEHAV.DAT", "DRV_DOF.DAT", "DOF.INI", "Vloc_Rloc.INI",
+              "GPV.INI", "POSTPRO.DAT"):
+        if (src / f).exists():
+            assert (tmp_path / "DATBOX" / f).read_bytes() == (src / f).read_bytes(), f
+    # BULK_BEHAV.DAT, MODELS.DAT: our own comment header, the records column for column
+    for f in ("BULK_BEHAV.DAT", "MODELS.DAT"):
+        if (src / f).exists():
+            assert _data_lines(tmp_path / "DATBOX" / f) == _data_lines(src / f), f
     for b in case.bodies:
         for d in b.driven:
             if d.evolution:
@@ -343,7 +361,26 @@ def test_lmgc90_deck_numbers_match_echo(name):
     case = read_case(DECKS / name)
     echo = datbox.read_bodies(DECKS / name / "OUTBOX" / "BODIES.OUT")
     assert len(echo) == len(case.bodies)
-    for a, b in zip(case.bodies, echo):
+    echo_ranks = _echo_tactor_ranks(DECKS / name / "OUTBOX" / "BODIES.OUT")
+    # (LMGC90 echoes the bodies model by model: MAILx before RBDY2)
+    echo_by_key = {(b.model, b.number): (b, r) for b, r in zip(echo, echo_ranks)}
+    assert sorted(echo_by_key) == sorted((b.model, b.number) for b in case.bodies)
+    for a in case.bodies:
+        b, ranks = echo_by_key[(a.model, a.number)]
+        if a.model == "MAILx":
+            assert a.nodes == pytest.approx(b.nodes, rel=1e-6, abs=1e-12)
+            assert a.elements == b.elements
+            # LMGC90's echo numbers every contactor it built: each CLxxx point
+            # and each ALpxx polyline, 1.. within the body; our numbering agrees
+            assert ranks == list(range(1, len(a.tactors()) + 1))
+            assert len(b.tactors()) == len(a.tactors())
+            for (ca, ka), (cb, kb) in zip(a.tactors(), b.tactors()):
+                assert (ca.kind, ca.color) == (cb.kind, cb.color)
+                if ka is None:
+                    assert ca.nodes == cb.nodes
+                else:
+                    assert ca.points[ka] == pytest.approx(cb.points[kb])
+            continue
         assert a.material == b.material
         assert a.coor == pytest.approx(b.coor, rel=1e-6, abs=1e-12)
         assert (a.avrd, a.gyrd) == pytest.approx((b.avrd, b.gyrd), rel=1e-6)
@@ -353,14 +390,24 @@ def test_lmgc90_deck_numbers_match_echo(name):
                 # LMGC90 re-centres the vertices it read: differences ~1e-10 m
                 assert ca.vertices == pytest.approx(cb.vertices, rel=1e-6, abs=1e-9)
     drv = datbox.read_drv_dof(DECKS / name / "OUTBOX" / "DRV_DOF.OUT", DECKS / name / "OUTBOX")
-    for num, lst in drv.items():
-        mine = case.bodies[num - 1].driven
-        assert [(d.kind, d.dof, d.evolution) for d in mine] == [(d.kind, d.dof, d.evolution) for d in lst]
+    assert sum(len(lst) for lst in drv.values()) == sum(len(b.driven) for b in case.bodies)
+    for key, lst in drv.items():
+        mine = case.body(*key).driven if isinstance(key, tuple) else case.body("RBDY2", key).driven
+        assert [(d.node, d.kind, d.dof, d.evolution) for d in mine] == \
+            [(d.node, d.kind, d.dof, d.evolution) for d in lst]
         for dm, de in zip(mine, lst):
             assert dm.value(np.linspace(0, 2, 9)) == pytest.approx(de.value(np.linspace(0, 2, 9)))
     g, mats = datbox.read_bulk_behav(DECKS / name / "OUTBOX" / "BULK_BEHAV.OUT")
     assert g == pytest.approx(case.gravity)
     assert {k: m.density for k, m in mats.items()} == {k: m.density for k, m in case.materials.items()}
+    for k, m in mats.items():
+        for p in ("young", "poisson", "yield_stress", "hardening"):
+            assert getattr(m, p) == pytest.approx(getattr(case.materials[k], p), rel=1e-6), (k, p)
+    if case.models:
+        models = datbox.read_models(DECKS / name / "OUTBOX" / "MODELS.OUT")
+        for k, m in models.items():      # LMGC90 echoes the deformable models only
+            assert (m.element, m.physics, m.options) == \
+                (case.models[k].element, case.models[k].physics, case.models[k].options)
     laws, rules = datbox.read_tact_behav(DECKS / name / "OUTBOX" / "TACT_BEHAV.OUT")
     assert list(laws) == list(case.laws)
     for k, law in laws.items():
@@ -378,6 +425,8 @@ def test_lmgc90_deck_numbers_match_echo(name):
 def test_lmgc90_mass_properties_recomputed(name):
     """avrd/gyrd computed from the contactors agree with pylmgc90's (0 for xKSID)."""
     for b in read_case(DECKS / name).bodies:
+        if b.model == "MAILx":
+            continue
         av, gy = b.avrd, b.gyrd
         b.avrd = b.gyrd = None
         av2, gy2 = b.radii()
