@@ -21,7 +21,8 @@ module fracas_mailx
   use fracas_deck, only: deck_t, element_input_t, model_input_t
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response
-  use fracas_bulk, only: bulk_t, bulk_j2, plane_strain, plane_stress, gp_size, bulk_from_material
+  use fracas_bulk, only: bulk_t, bulk_j2, plane_strain, plane_stress, gp_size, bulk_from_material, &
+                         gp_pxx, gp_pzz, gp_p
   use fracas_sparse, only: sparse_t, sparse_from_triplets, sparse_matvec
   use fracas_linear_solver, only: factor_t, factor_build, factor_update, factor_solve, factor_free, &
                                   factor_method_name, dense_spd_inverse
@@ -224,9 +225,11 @@ contains
     end do
     m%x = m%xbegin
     m%v = m%vbegin
-    ! Mass, stiffness and internal forces at the initial displacement; the
-    ! Gauss-point states of GPV.INI are not restored (a J2 body starts virgin).
+    ! Mass, stiffness and internal forces at the initial displacement, from the
+    ! plastic state of GPV.INI (elastic bodies need none: their stresses follow
+    ! from the displacements).
     m%gp_begin = 0.0_wp
+    call restore_plastic_state(m, deck)
     call assemble_all(m)
     m%fint_begin = m%fint
     m%gp_begin = m%gp
@@ -249,6 +252,35 @@ contains
         call input_error(file, line, 9, 'node number out of range for this MAILx body')
     end function mesh_node
   end subroutine mailx_build
+
+  !> Plastic strain and cumulative plastic strain of J2 elements from GPV.INI:
+  !> the internals line Fracas writes (plastic strain xx, yy, γxy, zz, p, von
+  !> Mises), or LMGC90's Q4P0x line (Cp⁻¹ 11, 22, 12, 33, p, von Mises), whose
+  !> finite-strain Cp⁻¹ ≈ I − 2 ε_p is taken to first order.
+  subroutine restore_plastic_state(m, deck)
+    type(mailx_t), intent(inout) :: m
+    type(deck_t), intent(in) :: deck
+    integer :: k, e, g, ng
+    real(wp) :: v(6)
+    do k = 1, size(deck%gpv_ini)
+      associate (r => deck%gpv_ini(k))
+        if (r%body < 1 .or. r%body > m%n) call input_error(r%src%file, r%src%line, 9, &
+          'GPV.INI: MAILx body number out of range')
+        e = m%elem_first(r%body) - 1 + r%element
+        if (r%element < 1 .or. e >= m%elem_first(r%body + 1)) call input_error(r%src%file, r%src%line, 9, &
+          'GPV.INI: element number out of range for this MAILx body')
+        if (m%mats(m%el_mat(e))%law /= bulk_j2 .or. size(r%values, 1) < 14) cycle
+        ng = m%el_gp(e + 1) - m%el_gp(e)
+        do g = 1, ng
+          v = r%values(9:14, min(g, size(r%values, 2)))
+          if (abs(v(1) - 1.0_wp) < 0.5_wp .and. abs(v(2) - 1.0_wp) < 0.5_wp) &   ! LMGC90's Cp^-1
+            v(1:4) = [0.5_wp * (1.0_wp - v(1)), 0.5_wp * (1.0_wp - v(2)), -v(3), 0.5_wp * (1.0_wp - v(4))]
+          m%gp_begin(gp_pxx:gp_pzz, m%el_gp(e) + g - 1) = v(1:4)
+          m%gp_begin(gp_p, m%el_gp(e) + g - 1) = v(5)
+        end do
+      end associate
+    end do
+  end subroutine restore_plastic_state
 
   !> Element kind of an element line: its model may name the element (LMGC90
   !> writes Q4xxx geometry with a Q4P0x model).
@@ -924,19 +956,25 @@ contains
     end if
   end subroutine mailx_compliance_columns
 
-  !> One line per distinct way the bodies' iteration matrices are solved.
+  !> How the bodies' iteration matrices are solved, in one line: the dense
+  !> inverses, and the sparse factorization of each large body (first three).
   function mailx_solver_summary(m) result(s)
     type(mailx_t), intent(in) :: m
     character(len=:), allocatable :: s
-    integer :: b, ndense
+    integer :: b, shown
     character(len=32) :: buf
-    ndense = count(m%dense)
-    write (buf, '(i0)') ndense
-    s = trim(buf)//' meshed bodies with a dense inverse (LAPACK)'
+    write (buf, '(i0)') count(m%dense)
+    s = trim(buf)//' dense inverses (LAPACK)'
+    shown = 0
     do b = 1, m%n
       if (m%dense(b)) cycle
+      shown = shown + 1
       write (buf, '(i0)') b
-      s = s//'; body '//trim(buf)//': '//factor_method_name(m%big(b)%f)
+      if (shown <= 3) s = s//'; body '//trim(buf)//': '//factor_method_name(m%big(b)%f)
     end do
+    if (shown > 3) then
+      write (buf, '(i0)') shown - 3
+      s = s//'; and '//trim(buf)//' more sparse bodies'
+    end if
   end function mailx_solver_summary
 end module fracas_mailx

@@ -2,7 +2,8 @@
 !> law and alert distance), the broad phase with cell lists (cost linear in the
 !> number of contactors) and the fine detection per interaction type.
 module fracas_detection
-  use fracas_kinds, only: wp
+  use fracas_kinds, only: wp, i8
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_deck, only: see_rule_input_t
   use fracas_errors, only: input_error
   use fracas_ids, only: i_dkdkx, i_dkjcx, i_dkkdx, i_dkplx, i_plplx, i_pljcx, i_clalp, i_cljcx, i_dkalp, i_plalp, &
@@ -207,20 +208,32 @@ contains
   !> Broad phase: every pair of contactors of different bodies, allowed by the
   !> see table, whose bounding circles come within alert + margin. Ordinary
   !> disks, polygons and mesh contactors are binned in square cells; big
-  !> contactors are tested against all.
+  !> contactors are tested against all. Cells are visited row by row, each
+  !> against the forward half of its neighbours, so pairs come in cell order
+  !> (spatially sorted contacts). The grid is dense (a counting sort) while it
+  !> has at most about 4 cells per contactor; a sparse scene (bodies far apart or
+  !> one far away) keeps only its occupied cells, sorted by (row, column): memory
+  !> stays linear whatever the distances. With the same cell size both give the
+  !> same pairs in the same order. Contactors whose centre is not finite are left
+  !> out (the run's state check stops such a run at the end of the step).
   !> q(3, rigid bodies) places rigid contactors, xn(2, mesh nodes) mesh ones.
   !> movable / mesh_movable: false for bodies whose every dof is driven.
-  subroutine detect_rough(det, t, q, movable, margin, xn, mesh_movable)
+  !> sparse_grid forces the sparse cells (tests).
+  subroutine detect_rough(det, t, q, movable, margin, xn, mesh_movable, sparse_grid)
     type(detection_t), intent(inout) :: det
     type(tactors_t), intent(in) :: t
     real(wp), intent(in) :: q(:, :), margin
     logical, intent(in) :: movable(:)
     real(wp), intent(in), optional :: xn(:, :)
     logical, intent(in), optional :: mesh_movable(:)
+    logical, intent(in), optional :: sparse_grid
     real(wp), allocatable :: c(:, :), bound(:)
     integer, allocatable :: cell_of(:), cell_start(:), items(:), fill(:), bigs(:)
-    integer :: k, j, nx, ny, ix, iy, jx, jy, cell, p, nsmall, ib
-    real(wp) :: lo(2), hi(2), size_cell, rmax
+    integer(i8), allocatable :: key(:), cell_key(:)
+    logical, allocatable :: binned(:), usable(:)
+    integer :: k, j, nx, ny, ix, iy, jx, jy, cell, p, nsmall, ib, ncell
+    real(wp) :: lo(2), hi(2), size_cell, reach_cell, rmax, cells
+    logical :: sparse
     allocate (c(2, t%n), bound(t%n))
     do k = 1, t%n
       call placement(t, k, q, xn, c(:, k), bound(k))
@@ -229,57 +242,99 @@ contains
       if (t%model(k) == bm_mesh) det%small(k) = t%kind(k) == tk_clxxx .or. &
         det%rigid_median <= 0.0_wp .or. bound(k) <= 10.0_wp * det%rigid_median
     end do
+    usable = ieee_is_finite(c(1, :)) .and. ieee_is_finite(c(2, :))
+    binned = det%small .and. usable
     det%npairs = 0
-    nsmall = count(det%small)
-    bigs = pack([(k, k=1, t%n)], .not. det%small)
+    nsmall = count(binned)
+    bigs = pack([(k, k=1, t%n)], .not. det%small .and. usable)
     if (nsmall > 0) then
-      rmax = maxval(bound, mask=det%small)
-      size_cell = 2.0_wp * rmax + det%max_alert + margin
-      lo = [minval(c(1, :), mask=det%small), minval(c(2, :), mask=det%small)]
-      hi = [maxval(c(1, :), mask=det%small), maxval(c(2, :), mask=det%small)]
-      ! Cap the grid at about 4 cells per disk for sparse scenes.
-      size_cell = max(size_cell, sqrt(max((hi(1) - lo(1)) * (hi(2) - lo(2)), tiny(1.0_wp)) / (4.0_wp * nsmall)))
-      nx = max(1, int((hi(1) - lo(1)) / size_cell) + 1)
-      ny = max(1, int((hi(2) - lo(2)) / size_cell) + 1)
-      allocate (cell_of(t%n), cell_start(nx * ny + 1), items(nsmall))
-      cell_start = 0
-      do k = 1, t%n
-        if (.not. det%small(k)) cycle
-        ix = min(nx - 1, int((c(1, k) - lo(1)) / size_cell))
-        iy = min(ny - 1, int((c(2, k) - lo(2)) / size_cell))
-        cell_of(k) = 1 + ix + nx * iy
-        cell_start(cell_of(k) + 1) = cell_start(cell_of(k) + 1) + 1
-      end do
-      cell_start(1) = 1
-      do k = 1, nx * ny
-        cell_start(k + 1) = cell_start(k + 1) + cell_start(k)
-      end do
-      fill = cell_start(1:nx * ny)
-      do k = 1, t%n
-        if (.not. det%small(k)) cycle
-        items(fill(cell_of(k))) = k
-        fill(cell_of(k)) = fill(cell_of(k)) + 1
-      end do
-      ! Visit cells in order (spatially sorted contacts); each pair once (j > k within a cell,
-      ! all of the forward half-stencil of neighbour cells).
-      do cell = 1, nx * ny
-        ix = mod(cell - 1, nx)
-        iy = (cell - 1) / nx
-        do p = cell_start(cell), cell_start(cell + 1) - 1
-          k = items(p)
-          do jy = iy, min(ny - 1, iy + 1)
-            do jx = max(0, ix - 1), min(nx - 1, ix + 1)
-              if (jy == iy .and. jx < ix) cycle
-              call scan_cell(k, 1 + jx + nx * jy, jx == ix .and. jy == iy, p)
+      rmax = maxval(bound, mask=binned)
+      reach_cell = 2.0_wp * rmax + det%max_alert + margin
+      lo = [minval(c(1, :), mask=binned), minval(c(2, :), mask=binned)]
+      hi = [maxval(c(1, :), mask=binned), maxval(c(2, :), mask=binned)]
+      ! Dense grid: cells enlarged to about 4 per disk for thin scenes; if it
+      ! would still have more, the sparse grid with the smallest cells.
+      size_cell = max(reach_cell, sqrt(max((hi(1) - lo(1)) * (hi(2) - lo(2)), tiny(1.0_wp)) / (4.0_wp * nsmall)))
+      cells = ((hi(1) - lo(1)) / size_cell + 1.0_wp) * ((hi(2) - lo(2)) / size_cell + 1.0_wp)
+      sparse = .not. (cells <= 4.0_wp * nsmall + 64.0_wp)
+      if (present(sparse_grid)) sparse = sparse .or. sparse_grid
+      if (sparse) size_cell = reach_cell
+      allocate (cell_of(t%n), items(nsmall))
+      if (.not. sparse) then
+        nx = max(1, int((hi(1) - lo(1)) / size_cell) + 1)
+        ny = max(1, int((hi(2) - lo(2)) / size_cell) + 1)
+        allocate (cell_start(nx * ny + 1))
+        cell_start = 0
+        do k = 1, t%n
+          if (.not. binned(k)) cycle
+          ix = min(nx - 1, int((c(1, k) - lo(1)) / size_cell))
+          iy = min(ny - 1, int((c(2, k) - lo(2)) / size_cell))
+          cell_of(k) = 1 + ix + nx * iy
+          cell_start(cell_of(k) + 1) = cell_start(cell_of(k) + 1) + 1
+        end do
+        cell_start(1) = 1
+        do k = 1, nx * ny
+          cell_start(k + 1) = cell_start(k + 1) + cell_start(k)
+        end do
+        fill = cell_start(1:nx * ny)
+        do k = 1, t%n
+          if (.not. binned(k)) cycle
+          items(fill(cell_of(k))) = k
+          fill(cell_of(k)) = fill(cell_of(k)) + 1
+        end do
+        ! Each pair once: j > k within a cell, all of the forward half-stencil of neighbour cells.
+        do cell = 1, nx * ny
+          ix = mod(cell - 1, nx)
+          iy = (cell - 1) / nx
+          do p = cell_start(cell), cell_start(cell + 1) - 1
+            k = items(p)
+            do jy = iy, min(ny - 1, iy + 1)
+              do jx = max(0, ix - 1), min(nx - 1, ix + 1)
+                if (jy == iy .and. jx < ix) cycle
+                call scan_cell(k, 1 + jx + nx * jy, jx == ix .and. jy == iy, p)
+              end do
             end do
           end do
         end do
-      end do
+      else
+        ! Occupied cells only: key = row * 2^31 + column (indices clamped to
+        ! 2^30; clamping keeps neighbours neighbours), sorted stably.
+        allocate (key(nsmall))
+        j = 0
+        do k = 1, t%n
+          if (.not. binned(k)) cycle
+          j = j + 1
+          items(j) = k
+          key(j) = cell_index(c(2, k) - lo(2)) * 2_i8**31 + cell_index(c(1, k) - lo(1))
+        end do
+        call sort_by_key(key, items)
+        ncell = 0
+        allocate (cell_key(nsmall), cell_start(nsmall + 1))
+        do j = 1, nsmall
+          if (j > 1) then
+            if (key(j) == key(j - 1)) cycle
+          end if
+          ncell = ncell + 1
+          cell_key(ncell) = key(j)
+          cell_start(ncell) = j
+        end do
+        cell_start(ncell + 1) = nsmall + 1
+        do cell = 1, ncell
+          do p = cell_start(cell), cell_start(cell + 1) - 1
+            k = items(p)
+            call scan_cell(k, cell, .true., p)
+            call scan_key(k, cell_key(cell) + 1_i8)
+            call scan_key(k, cell_key(cell) + 2_i8**31 - 1_i8)
+            call scan_key(k, cell_key(cell) + 2_i8**31)
+            call scan_key(k, cell_key(cell) + 2_i8**31 + 1_i8)
+          end do
+        end do
+      end if
     end if
     do ib = 1, size(bigs)
       k = bigs(ib)
       do j = 1, t%n
-        if (j == k) cycle
+        if (j == k .or. .not. usable(j)) cycle
         if (.not. det%small(j) .and. j < k) cycle    ! big-big pairs once
         call consider(k, j)
       end do
@@ -297,6 +352,38 @@ contains
         call consider(k, items(i))
       end do
     end subroutine scan_cell
+
+    !> Sparse grid: scan the occupied cell of key kk, if any (binary search).
+    !> Keys of a column overflow (column -1 or 2^30) are never occupied.
+    subroutine scan_key(k, kk)
+      integer, intent(in) :: k
+      integer(i8), intent(in) :: kk
+      integer :: a, b, m
+      a = 1; b = ncell
+      do while (a <= b)
+        m = (a + b) / 2
+        if (cell_key(m) == kk) then
+          call scan_cell(k, m, .false., 0)
+          return
+        else if (cell_key(m) < kk) then
+          a = m + 1
+        else
+          b = m - 1
+        end if
+      end do
+    end subroutine scan_key
+
+    !> Cell index of a coordinate offset from the grid origin, clamped to [0, 2^30 - 1].
+    integer(i8) function cell_index(d)
+      real(wp), intent(in) :: d
+      real(wp) :: x
+      x = d / size_cell
+      if (x < 2.0_wp**30) then
+        cell_index = int(x, i8)
+      else
+        cell_index = 2_i8**30 - 1_i8
+      end if
+    end function cell_index
 
     !> Keep (a, b) if the see table allows it and the bounding shapes are close.
     subroutine consider(a, b)
@@ -373,6 +460,43 @@ contains
     b(1:size(a)) = a
   end function grow_int
 
+  !> Stable merge sort of (key, item) pairs by key.
+  subroutine sort_by_key(key, item)
+    integer(i8), intent(inout) :: key(:)
+    integer, intent(inout) :: item(:)
+    integer(i8), allocatable :: kt(:)
+    integer, allocatable :: it(:)
+    integer :: n, width, a, m, b, i, j, o
+    n = size(key)
+    allocate (kt(n), it(n))
+    width = 1
+    do while (width < n)
+      a = 1
+      do while (a <= n)
+        m = min(a + width, n + 1)
+        b = min(a + 2 * width, n + 1)
+        i = a; j = m; o = a
+        do while (i < m .and. j < b)
+          if (key(j) < key(i)) then
+            kt(o) = key(j); it(o) = item(j); j = j + 1
+          else
+            kt(o) = key(i); it(o) = item(i); i = i + 1
+          end if
+          o = o + 1
+        end do
+        do while (i < m)
+          kt(o) = key(i); it(o) = item(i); i = i + 1; o = o + 1
+        end do
+        do while (j < b)
+          kt(o) = key(j); it(o) = item(j); j = j + 1; o = o + 1
+        end do
+        a = b
+      end do
+      key = kt
+      item = it
+      width = 2 * width
+    end do
+  end subroutine sort_by_key
   !> Centre and bounding radius of contactor k: rigid shapes from their body's
   !> configuration q, mesh contactors from the node coordinates xn.
   subroutine placement(t, k, q, xn, centre, bound)

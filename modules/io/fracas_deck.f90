@@ -91,6 +91,7 @@ module fracas_deck
     character(len=30) :: name = ''       !< e.g. 'IQS_CLB', 'RST_CLB', 'IQS_MAC_CZM'
     real(wp), allocatable :: params(:)
     character(len=5), allocatable :: param_labels(:)  !< labels as written ('fric=' ...)
+    integer, allocatable :: param_lines(:), param_cols(:)  !< where each parameter was read
     type(source_t) :: src
   end type law_input_t
 
@@ -197,6 +198,10 @@ module fracas_deck
     !> Also make contacts of pairs whose predicted gap (gap + h min(0, u_n), free
     !> velocities) is within the alert distance, not only their gap (doc/solver.md).
     logical :: detection_approach = .true.
+    !> NLGS convergence measured as LMGC90 measures it, by a check pass after each
+    !> block of sweeps that evaluates without applying (yes), or by the changes of
+    !> the block's last sweep (no) (doc/solver.md).
+    logical :: nlgs_check_pass = .true.
   end type run_control_t
 
   !> One command of POSTPRO.DAT (LMGC90's post-processing deck): its name as

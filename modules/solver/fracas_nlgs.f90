@@ -21,7 +21,7 @@ module fracas_nlgs
   use fracas_contact_laws, only: law_t, law_local_problem, law_czm
   use fracas_czm, only: czm_beta_update, czm_stored_energy
   use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
-  use fracas_errors, only: fatal
+  use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
   implicit none
   private
   public :: nlgs_settings_t, nlgs_report_t, nlgs_t, nlgs_init, nlgs_prepare, nlgs_solve, &
@@ -33,6 +33,7 @@ module fracas_nlgs
     real(wp) :: relax = 1.0_wp
     integer :: sweeps_per_check = 50
     integer :: max_checks = 400
+    logical :: check_pass = .true.    !< LMGC90's check pass (else the change of the last sweep)
     character(len=8) :: order = 'stored'
     integer :: seed = 1
   end type nlgs_settings_t
@@ -421,7 +422,9 @@ contains
     type(nlgs_report_t), intent(out) :: report
     integer :: k, iblock, isweep, n
     real(wp) :: sums(7), maxes(2), fsum, qsum, vscale
+    logical :: diverged
     n = c%n
+    diverged = .false.
     report%sweeps = 0
     if (allocated(solver%order)) then
       if (size(solver%order) < n) deallocate (solver%order, solver%qfree, solver%pidx, solver%pc, solver%pb, &
@@ -470,15 +473,23 @@ contains
           call rng_permute(solver%rng, solver%order(1:n))
           call pack_contacts()
         end if
-        do isweep = 1, solver%s%sweeps_per_check
-          call sweep(.false.)
-          report%sweeps = report%sweeps + 1
-        end do
-        ! LMGC90's check: one more pass that evaluates every contact's update
-        ! from the state the sweeps reached, without applying it.
-        call sweep(.true.)
+        if (solver%s%check_pass) then
+          do isweep = 1, solver%s%sweeps_per_check
+            call sweep(.false., .false.)
+            report%sweeps = report%sweeps + 1
+          end do
+          ! LMGC90's check: one more pass that evaluates every contact's update
+          ! from the state the sweeps reached, without applying it.
+          call sweep(.true., .true.)
+        else
+          ! The change of the block's last sweep.
+          do isweep = 1, solver%s%sweeps_per_check
+            call sweep(isweep == solver%s%sweeps_per_check, .false.)
+            report%sweeps = report%sweeps + 1
+          end do
+        end if
         call norms(report)
-        if (report%converged) exit blocks
+        if (report%converged .or. diverged) exit blocks   ! NaN/Inf: the caller's state check names it
       end do blocks
       call unpack_contacts()
     end if
@@ -783,17 +794,17 @@ contains
     end subroutine mesh_velocities
 
     !> One Gauss–Seidel sweep; with check, LMGC90's norm sums of this sweep.
-    subroutine sweep(check)
-      logical, intent(in) :: check
+    subroutine sweep(check, evaluate_only)
+      logical, intent(in) :: check, evaluate_only
       real(wp) :: s6(6), g6(6), gmax(2)
       integer :: np
       np = solver%np
       call gs_sweep_2d_packed(np, solver%pb, solver%pc, solver%pcoh, solver%any_coh, c%coh, solver%pr, solver%pst, solver%bv, &
-                              solver%s%relax, check, s6, maxes)
+                              solver%s%relax, check, s6, maxes, evaluate_only)
       if (solver%ng > 0) then
         call gs_sweep_mesh(solver%ng, solver%gc, solver%gside, solver%ggm, solver%gfirst, solver%gslot, solver%gwt, &
                            solver%gcoh, c%coh, solver%gr, solver%gst, solver%bv, solver%mv, solver%gmat, &
-                           solver%s%relax, check, g6, gmax)
+                           solver%s%relax, check, g6, gmax, evaluate_only)
         s6 = s6 + g6
         maxes = max(maxes, gmax)
       end if
@@ -803,34 +814,11 @@ contains
     !> LMGC90's normalised errors from the sums of the last check sweep.
     subroutine norms(rep)
       type(nlgs_report_t), intent(inout) :: rep
-      real(wp) :: nact, quad_wr, mean_wrr, tol
-      tol = solver%s%tol
-      nact = sums(6)
-      ! No reaction, or reactions at round-off level compared with the free
-      ! velocities (bodies merely touching): nothing left to converge.
-      if (nact < 1.0_wp .or. sums(4) <= 0.0_wp .or. sqrt(sums(5) / max(nact, 1.0_wp)) <= 1.0e-12_wp * vscale) then
-        rep%quad_dv = 0.0_wp; rep%maxm_dv = 0.0_wp; rep%quad_dvr = 0.0_wp
-        rep%maxm_dvr = 0.0_wp; rep%mean_dvor = 0.0_wp
-        rep%converged = .true.
-        return
-      end if
-      quad_wr = sqrt(sums(5) / nact)
-      mean_wrr = sums(4) / nact
-      rep%quad_dv = sqrt(sums(1) / nact) / (quad_wr * tol)
-      rep%maxm_dv = sqrt(maxes(1)) / (quad_wr * tol)
-      rep%quad_dvr = sqrt(sums(2) / nact) / (mean_wrr * tol)
-      rep%maxm_dvr = sqrt(maxes(2)) / (mean_wrr * tol)
-      rep%mean_dvor = sums(3) / (sums(4) * tol)
-      if (rep%quad_dv /= rep%quad_dv) call fatal('NLGS diverged (NaN in the reactions)')
-      select case (solver%s%check)
-      case ('Maxm ')
-        rep%converged = abs(rep%mean_dvor) < 1.0_wp .and. rep%maxm_dv < 1.0_wp .and. rep%maxm_dvr < 1.0_wp
-      case ('QM/16')
-        rep%converged = abs(rep%mean_dvor) < 1.0_wp .and. rep%quad_dv < 1.0_wp .and. &
-                        rep%quad_dvr < 1.0_wp .and. rep%maxm_dv < 16.666_wp .and. rep%maxm_dvr < 16.666_wp
-      case default
-        rep%converged = abs(rep%mean_dvor) < 1.0_wp .and. rep%quad_dv < 1.0_wp .and. rep%quad_dvr < 1.0_wp
-      end select
+      type(lmgc_norms_t) :: nrm
+      call lmgc_norms(solver%s%check, solver%s%tol, sums(1:6), maxes, vscale, nrm, rep%converged)
+      rep%quad_dv = nrm%quad_dv; rep%maxm_dv = nrm%maxm_dv; rep%quad_dvr = nrm%quad_dvr
+      rep%maxm_dvr = nrm%maxm_dvr; rep%mean_dvor = nrm%mean_dvor
+      diverged = .not. nrm%finite
     end subroutine norms
   end subroutine nlgs_solve
 end module fracas_nlgs

@@ -205,6 +205,7 @@ contains
     ns%max_checks = deck%run%nlgs_max_checks
     ns%order = deck%run%nlgs_order
     ns%seed = deck%run%nlgs_seed
+    ns%check_pass = deck%run%nlgs_check_pass
     call nlgs_init(sc%solver, ns)
 
   contains
