@@ -1,61 +1,46 @@
-"""Shared helpers of the meshed validation cases: running fracas and mesh_probe on a
-generated case, reading OUTBOX/fracas.h5 series, reporting checks.
+"""Shared helpers of the meshed validation cases: command line, running fracas on a
+generated case and reading its results with the one reader (fracas_tools.results:
+fracas.h5 holds the meshes' node and Gauss-point states at full precision in every
+snapshot); checks are fracas_tools.checks.Checker rows.
 
-Each case script is called as  case.py --fracas BIN --probe BIN --out DIR [--long]
+Each case script is called as  case.py --fracas BIN --out DIR [--long]
 and exits 1 if a check fails."""
 import argparse
 import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from meshdeck import read_probe  # noqa: E402,F401
-
-results = []
+TOOLS = Path(__file__).resolve().parents[2] / "tools"
+if str(TOOLS) not in sys.path:
+    sys.path.insert(0, str(TOOLS))
+from fracas_tools.checks import Checker  # noqa: E402,F401
+from fracas_tools.results import Run  # noqa: E402
 
 
 def args(description):
     p = argparse.ArgumentParser(description=description)
     p.add_argument("--fracas", required=True)
-    p.add_argument("--probe", required=True)
     p.add_argument("--out", required=True)
     p.add_argument("--long", action="store_true", help="the long version (finer meshes)")
     return p.parse_args()
 
 
 def run_fracas(fracas, case_dir, *settings):
+    """Run fracas on case_dir (--set for each of settings) and return its results
+    (a Run, to be closed; exits on failure or an unfinished run)."""
     cmd = [fracas, "-q", "--overwrite"] + [x for s in settings for x in ("--set", s)] + [str(case_dir)]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"fracas failed on {case_dir}:\n{r.stdout}\n{r.stderr}")
+    run = Run(case_dir)
+    if not run.complete:
+        sys.exit(f"{case_dir}: unfinished run")
+    return run
 
 
-def run_probe(probe, case_dir, out_file, every=0):
-    cmd = [probe, str(case_dir), str(out_file)] + ([str(every)] if every else [])
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"mesh_probe failed on {case_dir}:\n{r.stdout}\n{r.stderr}")
-    return read_probe(out_file)
-
-
-def series(case_dir, *names):
-    import h5py
-    with h5py.File(Path(case_dir, "OUTBOX", "fracas.h5"), "r") as f:
-        if f.attrs["complete"] != 1:
-            sys.exit(f"{case_dir}: unfinished run")
-        return [f["series"][n][:] for n in names]
-
-
-def check(name, value, tol, detail=""):
-    ok = bool(np.all(np.isfinite(value))) and value <= tol
-    results.append(ok)
-    print(f"{'PASS' if ok else 'FAIL'} {name}: {value:.3e} (tolerance {tol:.1e}){' ' + detail if detail else ''}")
-    return ok
-
-
-def finish():
-    n_fail = results.count(False)
-    print(f"{results.count(True)} passed, {n_fail} failed")
-    sys.exit(1 if n_fail or not results else 0)
+def mesh_states(run, which=None):
+    """Snapshots of a run (all, or the indices in which) with the meshes' state:
+    s.step, s.time, s.mesh['X'], s.mesh['V'] (nn, 2), s.mesh['gauss_points'] (ngp, 13:
+    sxx syy sxy szz, exx eyy gxy ezz, plastic strain (4), p)."""
+    idx = range(run.n_snapshots) if which is None else which
+    return [run.snapshot(i) for i in idx]

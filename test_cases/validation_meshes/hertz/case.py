@@ -19,8 +19,8 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from meshdeck import Deck  # noqa: E402
-from valmesh import args, check, finish, run_fracas  # noqa: E402
+from meshdeck import Case, one_based  # noqa: E402
+from valmesh import Checker, args, run_fracas  # noqa: E402
 
 E, NU, RHO, R = 2.0e11, 0.3, 7800.0, 0.05
 E_STAR = E / (1 - NU ** 2)
@@ -89,36 +89,33 @@ def half_disk_mesh(h_contact, h_far):
 def build(case_dir, h_contact, delta):
     nodes, tri, arc, diam = half_disk_mesh(h_contact, R / 8)
     nodes = np.round(nodes, 12)
-    d = Deck()
-    d.material("DISKx", rho=RHO, E=E, nu=NU)
-    d.material("TDURx", rho=1000.0)
-    d.model("M2DT3", "T3xxx")
-    d.wall((0.0, -0.005), 2 * R, 0.005)
-    b = d.mesh(nodes, [("T3", list(t)) for t in tri], "M2DT3", "DISKx")
+    case = Case(gravity=(0.0, 0.0))
+    case.add_material("DISKx", RHO, "ELAS", young=E, poisson=NU)
+    case.add_material("TDURx", 1000.0)
+    case.add_model("M2DT3", "T3xxx")
+    case.add_jonc((0.0, -0.005), 2 * R, 0.005, "TDURx").fix()
+    b = case.add_mesh_body(nodes, one_based(tri), model="M2DT3", material="DISKx")
     # Candidate points at the arc nodes within 3 a of the bottom, each on its edge
     # towards the left neighbour (right node first, as LMGC90 orients a lower edge).
     near = [k for k in range(len(arc) - 1) if abs(nodes[arc[k], 0]) < 3 * A_TARGET]
-    b.candidates([(arc[k], arc[k + 1], 0.0) for k in near])
-    d.law("gap00", "GAP_SGR_CLB", [[("fric", 0.0)]])
-    d.see_rule("MAILx", "CLxxx", "BLEUx", "gap00", "RBDY2", "JONCx", "WALLx", 0.2 * A_TARGET)
+    b.add_candidates([(arc[k] + 1, arc[k + 1] + 1, 0.0) for k in near], "BLEUx")
+    case.add_law("gap00", "GAP_SGR_CLB", fric=0.0)
+    case.add_see("CLxxx", "BLEUx", "JONCx", "WALLx", "gap00", 0.2 * A_TARGET)
     h, n_load, n_hold = 1.0e-2, 20, 5
     table = [(0.0, 0.0), (h, -delta / (n_load * h)), (n_load * h, -delta / (n_load * h)), ((n_load + 1) * h, 0.0),
              ((n_load + n_hold) * h, 0.0)]
-    for k in diam:
-        d.drive(b, k, 1)
-        d.drive(b, k, 2, evolution=table)
-    d.command(time_step=h, number_of_steps=n_load + n_hold, theta=1.0, plane="strain", output_dof_every=0,
-              output_hdf5_every=n_load + n_hold, nlgs_tolerance=1e-8, nlgs_max_checks=20000)
-    d.write(case_dir)
+    top = [k + 1 for k in diam]
+    b.impose_velocity(top, 1)
+    b.impose_evolution(top, 2, "vlocy", "descent.dat", data=np.array(table))
+    case.run.set(time_step=h, number_of_steps=n_load + n_hold, theta=1.0, plane="strain", output_dof_every=0,
+                 output_hdf5_every=n_load + n_hold, nlgs_tolerance=1e-8, nlgs_max_checks=20000)
+    case.write(case_dir)
     return len(nodes), len(tri), len(near)
 
 
-def measure(case_dir):
-    import h5py
-    with h5py.File(Path(case_dir, "OUTBOX", "fracas.h5"), "r") as f:
-        s = f["snapshots"][sorted(f["snapshots"])[-1]]
-        rn = s["contacts/reaction"][:, 1]
-        xs = s["contacts/point"][:, 0]
+def measure(run):
+    s = run.snapshot(-1)
+    rn, xs = s.contacts["reaction"][:, 1], s.contacts["point"][:, 0]
     on = rn > 0
     order = np.argsort(xs)
     xs, rn = xs[order], rn[order]
@@ -137,18 +134,19 @@ def main():
     delta = 1.6e-4
     case = Path(a.out, "long" if a.long else "quick")
     nn, ne, nc = build(case, h_contact, delta)
-    run_fracas(a.fracas, case)
-    P, a_m, p0_m, xs, rn, n_on = measure(case)
+    with run_fracas(a.fracas, case) as run:
+        P, a_m, p0_m, xs, rn, n_on = measure(run)
     a_h = np.sqrt(4 * P * R / (np.pi * E_STAR))
     p0_h = 2 * P / (np.pi * a_h)
-    print(f"INFO mesh: {nn} nodes, {ne} T3, element size {h_contact:.2e} m at the contact "
-          f"(a / {a_h / h_contact:.0f}); {nc} candidate nodes, {n_on} carrying a force")
-    print(f"INFO load P = {P:.6e} N/m: Hertz a = {a_h:.5e} m (a / R = {a_h / R:.3f}), p0 = {p0_h:.5e} Pa; "
-          f"measured a = {a_m:.5e} m, p0 = {p0_m:.5e} Pa")
+    ck = Checker("validation_meshes.hertz" + (".long" if a.long else ""))
+    ck.info(f"mesh: {nn} nodes, {ne} T3, element size at the contact a / n", a_h / h_contact)
+    ck.info(f"candidate nodes {nc}, carrying a force", n_on)
+    ck.info("load P (N/m)", P)
+    ck.info("a / R", a_h / R)
     np.savetxt(Path(a.out, "pressure.txt"), np.column_stack([xs, rn]), header=f"x (m) nodal force (N/m); P = {P}")
-    check("contact half-width against Hertz", abs(a_m / a_h - 1), 0.03)
-    check("peak pressure against Hertz", abs(p0_m / p0_h - 1), 0.03)
-    finish()
+    ck.rel("half-width a (m) vs sqrt(4 P R / (pi E*))", a_m, a_h, 0.03)
+    ck.rel("peak pressure p0 (Pa) vs 2 P / (pi a)", p0_m, p0_h, 0.03)
+    sys.exit(ck.finish())
 
 
 if __name__ == "__main__":

@@ -23,8 +23,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from meshdeck import Deck  # noqa: E402
-from valmesh import args, check, finish, run_fracas, run_probe, series  # noqa: E402
+from meshdeck import Case  # noqa: E402
+from valmesh import Checker, args, run_fracas  # noqa: E402
 
 E, NU, SIG0, HARD, RHO = 2.0e11, 0.3, 2.0e8, 2.0e11, 1.0
 H, DEPS = 1.0, 1.0e-4
@@ -40,25 +40,26 @@ def strain_path():
     return np.array(eps)
 
 
-def build(case_dir, plane):
-    d = Deck()
-    d.material("STEEL", rho=RHO, E=E, nu=NU, sig0=SIG0, hardening=HARD)
-    d.model("M2DJ2", "Q4xxx", mater="J2iso")
-    b = d.mesh([[0, 0], [1, 0], [1, 1], [0, 1]], [("Q4", [0, 1, 2, 3])], "M2DJ2", "STEEL")
-    d.drive(b, 0, 1)
-    d.drive(b, 0, 2)
-    d.drive(b, 3, 1)
+def build(case_dir, plane, lateral_held=False):
+    case = Case(gravity=(0.0, 0.0))
+    case.add_material("STEEL", RHO, "ELAS_PLAS", young=E, poisson=NU, yield_stress=SIG0, hardening=HARD)
+    case.add_model("M2DJ2", "Q4xxx", material="J2iso")
+    b = case.add_mesh_body(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]), [(1, 2, 3, 4)],
+                           model="M2DJ2", material="STEEL")
+    b.impose_velocity([1], (1, 2))
+    b.impose_velocity([4], (1, 2) if lateral_held else 1)
+    if lateral_held:
+        b.impose_velocity([2, 3], 2)       # eps_yy = 0: uniaxial strain
     # Velocity at each step end: the table holds the values at the step times.
     table, t = [(0.0, 0.0)], 0.0
     for sgn, n in SEGMENTS:
         table.append((t + H, sgn * DEPS / H))
         t += n * H
         table.append((t, sgn * DEPS / H))
-    for node in (1, 2):
-        d.drive(b, node, 1, evolution=table)
-    d.command(time_step=H, number_of_steps=sum(n for _, n in SEGMENTS), theta=1.0, plane=plane,
-              newton_tolerance=1e-13, newton_max_iterations=50, output_dof_every=0)
-    d.write(case_dir)
+    b.impose_evolution([2, 3], 1, "vlocy", "strain_rate.dat", data=np.array(table))
+    case.run.set(time_step=H, number_of_steps=sum(n for _, n in SEGMENTS), theta=1.0, plane=plane,
+                 newton_tolerance=1e-13, newton_max_iterations=50, output_dof_every=0, output_hdf5_every=1)
+    case.write(case_dir)
 
 
 def plane_stress_reference(eps):
@@ -76,6 +77,29 @@ def plane_stress_reference(eps):
         out_s.append(sig)
         out_p.append(p)
     return np.array(out_s), np.array(out_p)
+
+
+def uniaxial_strain_reference(eps):
+    """Closed form of uniaxial strain (eps_yy = eps_zz = 0): the deviatoric strain
+    eps (2/3, -1/3, -1/3) keeps its direction, so J2 with linear isotropic hardening
+    is a 1D law on t = s_xx (s_yy = s_zz = -t/2, von Mises q = 3/2 |t|): elastic
+    dt = 4/3 mu d eps; at q = sigma_0 + H p, dp = 2 mu |d eps| / (3 mu + H); the mean
+    stress K eps stays elastic. The regime changes inside a step are split exactly.
+    Returns sigma_xx, sigma_yy (= sigma_zz), p along the path."""
+    mu, k = E / (2 * (1 + NU)), E / (3 * (1 - 2 * NU))
+    t, p, out = 0.0, 0.0, [(0.0, 0.0, 0.0)]
+    for e0, e1 in zip(eps[:-1], eps[1:]):
+        de = e1 - e0
+        # elastic part of the increment: until 3/2 |t| reaches sigma_0 + H p
+        limit = np.sign(de) * (SIG0 + HARD * p) / 1.5
+        de_el = min(abs(de), max((limit - t) / (4.0 / 3.0 * mu) * np.sign(de), 0.0)) * np.sign(de)
+        t += 4.0 / 3.0 * mu * de_el
+        de_pl = de - de_el
+        dp = 2 * mu * abs(de_pl) / (3 * mu + HARD)
+        p += dp
+        t += np.sign(de) * 1.5 ** -1 * HARD * dp
+        out.append((k * e1 + t, k * e1 - t / 2, p))
+    return np.array(out)
 
 
 def radial_return(eps, eps_p, p):
@@ -112,74 +136,86 @@ def plane_strain_reference(eps_xx):
 
 def main():
     a = args(__doc__)
+    ck = Checker("validation_meshes.j2_cycle")
     eps = strain_path()
-    for plane in ("stress", "strain"):
-        case = Path(a.out, f"plane_{plane}")
-        build(case, plane)
-        recs = run_probe(a.probe, case, Path(a.out, f"plane_{plane}.probe"), every=1)
-        gp = np.array([r["gauss"] for r in recs])             # (steps + 1, 4, 13)
-        steps = np.array([r["step"] for r in recs])
-        x = np.array([r["nodes"][1, 2] for r in recs])        # right node displacement = eps_xx
-        wp = np.array([r["energy"][2] for r in recs])
-        name = f"plane {plane}"
-        check(f"{name}: driven strain path (right node ux against the planned strains)", np.abs(x - eps).max(), 1e-15)
-        check(f"{name}: the four Gauss points agree (homogeneous state)",
-              np.abs(gp - gp[:, :1, :]).max() / np.abs(gp[:, :, 0]).max(), 1e-10)
+    mu, k = E / (2 * (1 + NU)), E / (3 * (1 - 2 * NU))
+    for plane, held in (("stress", False), ("strain", False), ("strain", True)):
+        label = f"plane_{plane}" + ("_uniaxial_strain" if held else "")
+        case = Path(a.out, label)
+        build(case, plane, held)
+        with run_fracas(a.fracas, case) as run:
+            snaps = [run.snapshot(i) for i in range(run.n_snapshots)]
+            wp = np.concatenate([[0.0], run.series["plastic_work"]])
+        # Step 0 (the initial state) is not a snapshot: zero displacement and stress.
+        steps = np.array([0] + [s.step for s in snaps])
+        gp = np.array([np.zeros_like(snaps[0].mesh["gauss_points"])] + [s.mesh["gauss_points"] for s in snaps])
+        x = np.array([0.0] + [s.mesh["X"][1, 0] for s in snaps])     # right node ux = eps_xx
+        name = f"plane {plane}" + (", eps_yy = 0" if held else "")
+        ck.true(f"{name}: a snapshot at every step", np.array_equal(steps, np.arange(len(eps))), len(steps),
+                len(eps))
+        ck.at_most(f"{name}: driven strain path (right node ux)", np.abs(x - eps).max(), 1e-15)
+        ck.at_most(f"{name}: the 4 Gauss points agree (homogeneous)",
+                   np.abs(gp - gp[:, :1, :]).max() / np.abs(gp[:, :, 0]).max(), 1e-10)
         s = gp[:, 0, :]
         sxx, syy, sxy, szz, p = s[:, 0], s[:, 1], s[:, 2], s[:, 3], s[:, 12]
+        # Slopes d sigma_xx / d eps_xx of the closed forms: elastic, hardening.
         if plane == "stress":
             ref_s, ref_p = plane_stress_reference(eps)
             ref = np.column_stack([ref_s, 0 * ref_s, 0 * ref_s, 0 * ref_s])
-            e_el = E
+            e_el, e_t = E, E * HARD / (E + HARD)
             first_yield = SIG0
+        elif held:
+            r = uniaxial_strain_reference(eps)
+            ref_s, ref_p = r[:, 0], r[:, 2]
+            ref = np.column_stack([r[:, 0], r[:, 1], 0 * ref_s, r[:, 1]])
+            e_el, e_t = k + 4 * mu / 3, k + 4 * mu * HARD / (3 * (3 * mu + HARD))
+            first_yield = (k + 4 * mu / 3) * SIG0 / (2 * mu)
         else:
             r = plane_strain_reference(eps)
             ref_s, ref_p = r[:, 0], r[:, 3]
             ref = np.column_stack([r[:, 0], r[:, 1], 0 * ref_s, r[:, 2]])
-            e_el = E / (1 - NU ** 2)
+            e_el, e_t = E / (1 - NU ** 2), None
             first_yield = SIG0 / np.sqrt(1 - NU + NU ** 2)
         scale = np.abs(ref_s).max()
-        check(f"{name}: stress (xx, yy, xy, zz) at every step against the reference",
-              np.abs(np.column_stack([sxx, syy, sxy, szz]) - ref).max() / scale, 1e-8)
-        check(f"{name}: equivalent plastic strain p at every step", np.abs(p - ref_p).max() / ref_p.max(), 1e-8)
+        ck.at_most(f"{name}: stress xx yy xy zz, every step / max|sig|",
+                   np.abs(np.column_stack([sxx, syy, sxy, szz]) - ref).max() / scale, 1e-8)
+        ck.at_most(f"{name}: p at every step / max p", np.abs(p - ref_p).max() / ref_p.max(), 1e-8)
         ny = int(np.argmax(p > 1e-9 * p.max()))     # first step with plastic flow (not round-off)
-        check(f"{name}: elastic slope d sigma / d eps before yield against {e_el:.6e}",
-              abs((sxx[ny - 1] - sxx[0]) / (eps[ny - 1] - eps[0]) / e_el - 1), 1e-8)
+        ck.rel(f"{name}: elastic slope before yield", (sxx[ny - 1] - sxx[0]) / (eps[ny - 1] - eps[0]), e_el, 1e-8)
         if plane == "stress":
-            check(f"{name}: first yield at sigma_0 (stress at the step end before the first plastic step)",
-                  abs(sxx[ny - 1] / SIG0 - 1), 1e-8, f"(yield strain {SIG0 / E:.1e} = step {ny - 1})")
-            plastic = (np.diff(p) > 0) & (np.roll(np.diff(p) > 0, 1))
-            slopes = np.diff(sxx)[plastic] / np.diff(eps)[plastic]
-            et = E * HARD / (E + HARD)
-            check(f"{name}: hardening slope in {plastic.sum()} plastic steps against E H / (E + H) = {et:.6e}",
-                  np.abs(slopes / et - 1).max(), 1e-8)
-            unload = np.diff(p) == 0
-            slopes = np.diff(sxx)[unload] / np.diff(eps)[unload]
-            check(f"{name}: elastic unloading slope in {unload.sum()} steps against E",
-                  np.abs(slopes / E - 1).max(), 1e-8)
+            ck.rel(f"{name}: first yield at sigma_0 (step {ny - 1})", sxx[ny - 1], SIG0, 1e-8)
         else:
             # The first yield falls inside step ny: the elastic line crosses
-            # first_yield at eps_y; check the trial stress of that step instead.
+            # first_yield at eps_y; the stress it predicts there must be first_yield.
             eps_y = first_yield / e_el
-            check(f"{name}: first yield at sigma_0 / sqrt(1 - nu + nu^2) = {first_yield:.6e} "
-                  f"(elastic stress at eps_y = {eps_y:.6e} on the computed elastic line)",
-                  abs(sxx[ny - 1] / eps[ny - 1] * eps_y / first_yield - 1), 1e-8,
-                  f"(yield between steps {ny - 1} and {ny})")
-            print(f"INFO {name}: sigma_zz / sigma_xx = {szz[ny - 1] / sxx[ny - 1]:.4f} (nu) before yield, "
-                  f"{szz[30] / sxx[30]:.4f} at the end of the first tension (tends to 1/2 under plastic flow)")
+            ck.rel(f"{name}: first yield sigma_xx", sxx[ny - 1] / eps[ny - 1] * eps_y,
+                   first_yield, 1e-8, f"between steps {ny - 1} and {ny}")
+        if e_t is not None:
+            # steps wholly plastic (the step before also plastic) and wholly elastic
+            plastic = (np.diff(p) > 0) & (np.roll(np.diff(p) > 0, 1))
+            slopes = np.diff(sxx)[plastic] / np.diff(eps)[plastic]
+            worst = slopes[np.argmax(np.abs(slopes / e_t - 1))]
+            ck.rel(f"{name}: hardening slope, worst of {plastic.sum()}", worst, e_t, 1e-8,
+                   "E H/(E+H)" if plane == "stress" else "K + 4 mu H/(3 (3 mu + H))")
+            unload = np.diff(p) == 0
+            slopes = np.diff(sxx)[unload] / np.diff(eps)[unload]
+            worst = slopes[np.argmax(np.abs(slopes / e_el - 1))]
+            ck.rel(f"{name}: elastic unloading slope, worst of {unload.sum()}", worst, e_el, 1e-8)
+        if held:
+            ck.at_most(f"{name}: mean stress = K eps (plastic flow isochoric)",
+                       np.abs((sxx + syy + szz) / 3 - k * eps).max() / scale, 1e-8)
+        if plane == "strain" and not held:
+            ck.info(f"{name}: sigma_zz / sigma_xx before yield (nu)", szz[ny - 1] / sxx[ny - 1])
+            ck.info(f"{name}: sigma_zz / sigma_xx end of 1st tension", szz[30] / sxx[30], "tends to 1/2")
         w_ref = SIG0 * p + 0.5 * HARD * p ** 2
-        check(f"{name}: plastic work int sigma : d eps_p against sigma_0 p + H p^2 / 2 (p of the run)",
-              np.abs(wp - w_ref).max() / w_ref.max(), 1e-8, f"(final {wp[-1]:.6e} J per m)")
+        ck.at_most(f"{name}: plastic work vs sig0 p + H p^2/2 (run's p)",
+                   np.abs(wp - w_ref).max() / w_ref.max(), 1e-8)
         w_ref2 = SIG0 * ref_p + 0.5 * HARD * ref_p ** 2
-        check(f"{name}: plastic work against the same with the reference p",
-              np.abs(wp - w_ref2).max() / w_ref2.max(), 1e-8)
-        # The executable on the same deck: its series plastic_work.
-        run_fracas(a.fracas, case)
-        (wser,) = series(case, "plastic_work")
-        check(f"{name}: fracas fracas.h5 plastic_work against the probe", np.abs(wser - wp[1:]).max() / wp.max(), 1e-12)
-        np.savetxt(Path(a.out, f"plane_{plane}_curve.txt"), np.column_stack([steps, eps, sxx, p, wp, ref_s]),
+        ck.rel(f"{name}: final plastic work (reference p), J/m", wp[-1], w_ref2[-1], 1e-8)
+        ck.at_most(f"{name}: plastic work, every step (reference p)", np.abs(wp - w_ref2).max() / w_ref2.max(), 1e-8)
+        np.savetxt(Path(a.out, f"{label}_curve.txt"), np.column_stack([steps, eps, sxx, p, wp, ref_s]),
                    header="step eps_xx sigma_xx p plastic_work reference_sigma_xx")
-    finish()
+    sys.exit(ck.finish())
 
 
 if __name__ == "__main__":
