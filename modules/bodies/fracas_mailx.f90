@@ -686,6 +686,11 @@ contains
   !> are after one iteration. Otherwise the next iterate is prepared (residual
   !> and free velocity at the new velocities) and the unbalanced force on the
   !> free dofs |R + r| is compared with tol times the force scale of the step.
+  !> The internal forces count with the larger of their start and end values: the
+  !> end stresses are the start ones plus increments, so their round-off is
+  !> relative to both (a J2 body unloading through zero stress has Fi ~ 0 at the
+  !> step end, and a scale of the end forces alone was out of reach of round-off:
+  !> newton_max_iterations reached at every such step).
   logical function mailx_converged(m, tol, max_iterations) result(done)
     type(mailx_t), intent(inout) :: m
     real(wp), intent(in) :: tol
@@ -696,8 +701,8 @@ contains
     if (.not. m%any_nonlinear) return
     call mailx_iterate(m)
     unbalanced = sqrt(sum((m%res + m%imp)**2, mask=.not. m%driven))
-    scale = sqrt(sum((m%h * m%fext)**2)) + sqrt(sum((m%h * m%fint)**2)) + sqrt(sum(m%imp**2)) + &
-            sqrt(sum((m%mdiag * (m%v - m%vbegin))**2))
+    scale = sqrt(sum((m%h * m%fext)**2)) + m%h * max(sqrt(sum(m%fint**2)), sqrt(sum(m%fint_begin**2))) + &
+            sqrt(sum(m%imp**2)) + sqrt(sum((m%mdiag * (m%v - m%vbegin))**2))
     m%newton_converged = unbalanced <= tol * max(scale, tiny(1.0_wp))
     done = m%newton_converged .or. m%iterations > max_iterations
   end function mailx_converged

@@ -83,6 +83,8 @@ def test_meshed_layout_is_read(h5):
     snap = res.snapshot(-1)
     assert snap.X.shape == (nb, 2) and snap.mesh["stress"].shape == (1, 4)
     assert snap.mesh["X"].tolist() == [[0.5, 0.5]] * 3 and snap.mesh["gauss_points"].shape == (1, 13)
+    xs = res.snapshot_arrays("mesh_X")
+    assert len(xs) == res.n_snapshots and all(np.array_equal(x, snap.mesh["X"]) for x in xs)
 
 
 def test_checker_counts():

@@ -53,9 +53,7 @@ def measure(run, h):
     mean force over the contact and over its middle half (the plateau), and the
     rebound velocity (momentum / mass after the run: lumped masses of a uniform strip
     one element across, end rows half)."""
-    # Only the reactions of each snapshot (Run.snapshot would read every contact field).
-    snaps = run.file["snapshots"]
-    force = np.array([snaps[name]["contacts/reaction"][:, 1].sum() for name in run.snapshot_names])
+    force = np.array([r[:, 1].sum() for r in run.snapshot_arrays("contacts/reaction")])
     on = np.nonzero(force > 0)[0]
     duration = (on[-1] - on[0] + 1) * h
     mean_force = force[on[0]:on[-1] + 1].mean()

@@ -13,9 +13,10 @@ References. Plane stress: the closed form of uniaxial linear isotropic hardening
 -(sigma_0 + H p)). Plane strain (eps_zz = 0): elastic slope E / (1 - nu^2), first yield
 at sigma_0 / sqrt(1 - nu + nu^2); beyond it an independent material-point radial
 return (3D small strain, the same strain steps, sigma_yy = 0 solved by root finding).
-Both: plastic work int sigma : d eps_p = sigma_0 p + H p^2 / 2 (sigma : eps_p' =
-sigma_y(p) p' on the yield surface). Tolerance 1e-8 relative to the largest stress
-(or the final work)."""
+Plane strain with eps_yy = 0 too (the right and top nodes also held in y: uniaxial
+strain): the closed form of uniaxial_strain_reference. All: plastic work
+int sigma : d eps_p = sigma_0 p + H p^2 / 2 (sigma : eps_p' = sigma_y(p) p' on the
+yield surface). Tolerance 1e-8 relative to the largest stress (or the final work)."""
 import sys
 from pathlib import Path
 
@@ -144,16 +145,20 @@ def main():
         case = Path(a.out, label)
         build(case, plane, held)
         with run_fracas(a.fracas, case) as run:
-            snaps = [run.snapshot(i) for i in range(run.n_snapshots)]
+            steps = np.array([0] + [s for s, _ in run.snapshot_times()])
+            gp = np.array(run.snapshot_arrays("mesh_gauss_points"))
+            x = np.concatenate([[0.0], [X[1, 0] for X in run.snapshot_arrays("mesh_X")]])   # right node ux = eps_xx
             wp = np.concatenate([[0.0], run.series["plastic_work"]])
+            newton, converged = run.series["newton_iterations"], run.series["converged"]
         # Step 0 (the initial state) is not a snapshot: zero displacement and stress.
-        steps = np.array([0] + [s.step for s in snaps])
-        gp = np.array([np.zeros_like(snaps[0].mesh["gauss_points"])] + [s.mesh["gauss_points"] for s in snaps])
-        x = np.array([0.0] + [s.mesh["X"][1, 0] for s in snaps])     # right node ux = eps_xx
+        gp = np.concatenate([np.zeros_like(gp[:1]), gp])
         name = f"plane {plane}" + (", eps_yy = 0" if held else "")
         ck.true(f"{name}: a snapshot at every step", np.array_equal(steps, np.arange(len(eps))), len(steps),
                 len(eps))
         ck.at_most(f"{name}: driven strain path (right node ux)", np.abs(x - eps).max(), 1e-15)
+        # Newton to 1e-13 (relative) converges in 2 iterations, or 4 at a yield step.
+        ck.at_most(f"{name}: most Newton iterations of a step", newton.max(), 10)
+        ck.true(f"{name}: every step converged (series converged)", converged.min() == 1, converged.min(), 1)
         ck.at_most(f"{name}: the 4 Gauss points agree (homogeneous)",
                    np.abs(gp - gp[:, :1, :]).max() / np.abs(gp[:, :, 0]).max(), 1e-10)
         s = gp[:, 0, :]
