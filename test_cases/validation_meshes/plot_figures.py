@@ -74,7 +74,7 @@ def mesh_convergence(out):
     a1.set_ylabel("relative error")
     a1.set_title("cantilever, Q4, plane stress")
     a1.legend(fontsize=8)
-    mesh, size = hz[:3], hz[3:]
+    mesh = hz[:3]
     for k, lab, mk in ((2, "a, deformed positions", "o-"), (3, "p0, deformed positions", "s-"),
                        (4, "a, reference positions", "o--"), (5, "p0, reference positions", "s--")):
         a2.semilogy(mesh[:, 1], np.abs(mesh[:, k]), mk, label=lab)

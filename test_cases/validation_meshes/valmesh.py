@@ -1,7 +1,9 @@
 """Shared helpers of the meshed validation cases: command line, running fracas on a
-generated case and reading its results with the one reader (fracas_tools.results:
-fracas.h5 holds the meshes' node and Gauss-point states at full precision in every
-snapshot); checks are fracas_tools.checks.Checker rows.
+generated case and opening its results with the one reader (fracas_tools.results:
+every fracas.h5 snapshot holds the meshes' node and Gauss-point states at full
+precision, Snapshot.mesh["X"], ["V"], ["gauss_points"], or Run.snapshot_arrays
+("mesh_X") for all snapshots); checks are fracas_tools.checks.Checker rows (Checker
+is imported from here).
 
 Each case script is called as  case.py --fracas BIN --out DIR [--long]
 and exits 1 if a check fails."""
@@ -37,10 +39,3 @@ def run_fracas(fracas, case_dir, *settings):
         sys.exit(f"{case_dir}: unfinished run")
     return run
 
-
-def mesh_states(run, which=None):
-    """Snapshots of a run (all, or the indices in which) with the meshes' state:
-    s.step, s.time, s.mesh['X'], s.mesh['V'] (nn, 2), s.mesh['gauss_points'] (ngp, 13:
-    sxx syy sxy szz, exx eyy gxy ezz, plastic strain (4), p)."""
-    idx = range(run.n_snapshots) if which is None else which
-    return [run.snapshot(i) for i in idx]

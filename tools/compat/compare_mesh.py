@@ -43,14 +43,15 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from mesh_records import (NodeSets, read_dof, read_gpv, read_vloc, ulp7, ulp8)  # noqa: E402
+from fracas_tools.checks import Checker  # noqa: E402
 
-results = []
+checker = None          # the run's Checker (main)
 
 
 def report(name, ok, detail):
-    results.append(ok)
-    print(f"{'PASS' if ok else 'FAIL'} {name}: {detail}")
+    checker.true(name, ok, note=detail)
 
 
 def _ratio(ours, ref, q, a):
@@ -370,6 +371,8 @@ def main():
     c.add_argument("ref")
     c.add_argument("--spec", required=True)
     a = p.parse_args()
+    global checker
+    checker = Checker(f"compare_mesh {a.mode}")
     if a.mode == "outbox":
         a.rel_map = {kv.split("=")[0]: float(kv.split("=")[1]) for kv in a.rel}
         outbox(a)
@@ -377,9 +380,9 @@ def main():
         sets(a)
     else:
         check_czm(a)
-    n_fail = results.count(False)
-    print(f"{results.count(True)} passed, {n_fail} failed")
-    sys.exit(1 if n_fail or not results else 0)
+    if not checker.rows:
+        checker.true("at least one comparison made", False)
+    sys.exit(checker.finish())
 
 
 if __name__ == "__main__":
