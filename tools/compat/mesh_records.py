@@ -11,9 +11,13 @@ significant digits) and POSTPRO values as ES14.7 (d.ddddddd E+ee, 8 digits).
 :func:`ulp7` is one unit of the 7th significant digit of a value so printed.
 """
 import re
+import sys
 from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from fracas_tools import outbox  # noqa: E402
 
 NUM = re.compile(r"[-+]?\d*\.\d+(?:[DdEe][-+]?\d+)?")
 
@@ -157,45 +161,22 @@ def read_sets(datbox):
 # OUTBOX records
 # ------------------------------------------------------------------------------------
 
+# LMGC90's OUTBOX files are parsed by fracas_tools.outbox (the one reader of those
+# records); these adapters give compare_mesh.py the shapes it compares.
+
 def read_dof(path):
     """DOF.OUT.n / DOF.INI -> (step, time, dict (model, body) -> (X (n, k), V (n, k)))."""
-    lines = Path(path).read_text(encoding="latin-1").splitlines()
-    step, time, out = 0, 0.0, {}
-    i = 0
-    while i < len(lines):
-        t = lines[i]
-        if t.startswith("$steps"):
-            step = int(t.split()[1])
-            time = _nums(t.split("time=")[1])[0]
-        elif t.startswith("$bdyty"):
-            model, num = lines[i + 1].split()[:2]
-            xs, vs = [], []
-            i += 2
-            while not lines[i].startswith("$$$$$$"):
-                if lines[i][1:3] == "NO":
-                    xs.append(_nums(lines[i][29:]))
-                    vs.append(_nums(lines[i + 1][29:]))
-                    i += 1
-                i += 1
-            out[(model, int(num))] = (np.array(xs), np.array(vs))
-        i += 1
-    return step, time, out
+    d = outbox.read_dof_file(path)
+    return d.step, d.time, {(r.model, r.number): (np.atleast_2d(np.asarray(r.x, dtype=float)),
+                                                  np.atleast_2d(np.asarray(r.v, dtype=float)))
+                            for r in d.records}
 
 
 def read_gpv(path):
     """GPV.OUT.n -> dict (body, element) -> list of value lines (np arrays), in file order."""
-    lines = Path(path).read_text(encoding="latin-1").splitlines()
-    out, body, key = {}, None, None
-    for i, t in enumerate(lines):
-        if t.startswith("$bdyty"):
-            body = int(lines[i + 1].split()[1])
-        elif t.startswith("$blmty"):
-            key = (body, int(lines[i + 1].split()[1]))
-            out[key] = []
-        elif key and t.strip() and t[0] not in "$!" and not t.strip().startswith("MECAx") \
-                and not t[1:6].strip().endswith("x"):
-            out[key].append(np.array(_nums(t)))
-    return out
+    g = outbox.read_gpv(path)
+    return {(b.number, e.number): [np.asarray(row, dtype=float) for row in e.rows]
+            for b in g.bodies for e in b.elements}
 
 
 class Contact:
@@ -205,30 +186,21 @@ class Contact:
 def read_vloc(path):
     """Vloc_Rloc.OUT.n -> dict key -> Contact; key = (inter, cd model, cd body, cd tactor,
     an model, an body, an tactor, segment or 0). rl = (rlt/H, rln/H), vl = (vlt, vln)."""
-    lines = Path(path).read_text(encoding="latin-1").splitlines()
     out = {}
-    i = 0
-    while i < len(lines):
-        if lines[i].startswith("$icdan"):
-            c = Contact()
-            c.inter = lines[i].split()[1]
-            ids = lines[i + 2].split()
-            # CLALp/DKALp/PLALp: the antagonist segment follows the antagonist tactor number
-            seg = int(ids[9]) if len(ids) == 12 and ids[7] == "ALpxx" else 0
-            c.segment = seg
-            c.status = ids[-2]
-            c.key = (c.inter, ids[0], int(ids[1]), int(ids[3]), ids[5], int(ids[6]), int(ids[8]), seg)
-            c.rl = np.array(_nums(lines[i + 3][29:])[:2])
-            c.vl = np.array(_nums(lines[i + 4][29:])[:2])
-            c.gap = _nums(lines[i + 5][29:])[0]
-            c.n = np.array(_nums(lines[i + 6][29:])[:2])
-            c.coo = np.array(_nums(lines[i + 7][29:])[:2])
-            c.internals = np.array([])
-            if i + 9 < len(lines) and lines[i + 8].startswith("#taille_ele"):
-                c.internals = np.array(_nums(lines[i + 9]))
-            out[c.key] = c
-            i += 8
-        i += 1
+    for r in outbox.read_vloc_rloc(path).records:
+        c = Contact()
+        c.inter = r.inter
+        # CLALp/DKALp: the antagonist segment of the ALpxx polyline
+        c.segment = r.anseg if (r.antac == "ALpxx" and r.anseg is not None) else 0
+        c.status = r.status
+        c.key = (r.inter, r.cdbdy, r.icdbdy, r.icdtac, r.anbdy, r.ianbdy, r.iantac, c.segment)
+        c.rl = np.asarray(r.rloc[:2], dtype=float)
+        c.vl = np.asarray(r.vloc[:2], dtype=float)
+        c.gap = float(r.gap)
+        c.n = np.asarray(r.normal[:2], dtype=float)
+        c.coo = np.asarray(r.coor[:2], dtype=float)
+        c.internals = np.asarray(r.internals if r.internals is not None else [], dtype=float)
+        out[c.key] = c
     return out
 
 
