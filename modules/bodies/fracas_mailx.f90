@@ -28,7 +28,7 @@ module fracas_mailx
                                   factor_method_name, dense_spd_inverse
   implicit none
   private
-  public :: mailx_t, mailx_build, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
+  public :: mailx_t, mailx_build, mailx_restore_state, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
             mailx_dense_max, mailx_gauss_values
@@ -754,6 +754,30 @@ contains
       end where
     end subroutine residual_at_end
   end subroutine mailx_end_step
+
+  !> Put the meshes into a saved end-of-step state (exact restart): nodal
+  !> displacements x and velocities v, Gauss-point states gp, internal forces
+  !> fint, and the energy accumulators energies = [kinetic0, work_gravity,
+  !> work_forces, work_supports, plastic_work]. Nonlinear bodies get their
+  !> tangent and factorization back from that state, as their next step would.
+  subroutine mailx_restore_state(m, x, v, gp, fint, energies)
+    type(mailx_t), intent(inout) :: m
+    real(wp), intent(in) :: x(:, :), v(:, :), gp(:, :), fint(:, :), energies(5)
+    integer :: b
+    m%xbegin = x; m%x = x
+    m%vbegin = v; m%v = v
+    m%gp_begin = gp; m%gp = gp
+    do b = 1, m%n
+      if (.not. m%nonlinear(b)) cycle
+      call assemble_body(m, b, m%xbegin, with_mass=.false.)
+      call factorize_body(m, b)
+    end do
+    m%gp = gp
+    m%fint_begin = fint; m%fint = fint
+    m%kinetic0 = energies(1); m%work_gravity = energies(2); m%work_forces = energies(3)
+    m%work_supports = energies(4); m%plastic_work = energies(5)
+    m%elastic = elastic_energy(m)
+  end subroutine mailx_restore_state
 
   !> Kinetic energy 1/2 V^T M V of all dofs (driven ones too: the drives' work
   !> is booked through the force they apply).
