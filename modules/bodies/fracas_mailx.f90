@@ -528,6 +528,7 @@ contains
     real(wp), allocatable :: a(:, :), ai(:, :), av(:)
     type(sparse_t) :: aff
     real(wp) :: c2
+    logical :: ok
     nd = body_ndof(m, b)
     n0 = m%node_first(b)
     fidx = pack([(i, i=1, nd)], .not. reshape(m%driven(:, n0:m%node_first(b + 1) - 1), [nd]))
@@ -545,7 +546,9 @@ contains
       m%dinv(m%dfirst(b) + 1:m%dfirst(b) + nd * nd) = 0.0_wp
       if (nf > 0) then
         ai = a(fidx, fidx)
-        call dense_spd_inverse(ai)
+        call dense_spd_inverse(ai, ok)
+        if (.not. ok) call fatal('MAILx body '//itoa(b)//': its iteration matrix M + (h theta)^2 K is not '// &
+          'positive definite (a density, Young''s modulus or time step out of proportion with the others?)')
         do j = 1, nf
           do i = 1, nf
             m%dinv(m%dfirst(b) + fidx(i) + nd * (fidx(j) - 1)) = ai(i, j)
