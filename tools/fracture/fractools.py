@@ -1,0 +1,143 @@
+"""Helpers of the fracture validation cases (test_cases/validation_fracture/*/gen.py and
+check.py): structured meshes, the energy-audit check, the reference of each case.
+
+Results are read with fracas_tools.fracture.MeshRun (on top of fracas_tools.post.Run,
+the one fracas.h5 reader); checks print one line per quantity with
+tools/validation/valtools.Checker.
+"""
+
+import sys
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+for _p in (ROOT / "tools", ROOT / "tools" / "validation"):
+    if str(_p) not in sys.path:
+        sys.path.insert(0, str(_p))
+
+from valtools import Checker  # noqa: E402,F401
+from fracas_tools.fracture import MeshRun  # noqa: E402,F401
+
+__all__ = ["ROOT", "Checker", "MeshRun", "Grid", "structured_quads", "check_energy",
+           "run_dir_from_argv", "smooth_ramp"]
+
+
+class Grid:
+    """A structured grid of quadrilaterals on [x0, x1] x [y0, y1] (nx x ny cells):
+    ``nodes`` (n, 2), ``elements`` (Q4 corners counter-clockwise, or Q8 corners then
+    mid-sides), ``node(i, j)`` the node at grid point (i, j) of the (order*nx+1) x
+    (order*ny+1) lattice (Q8: the cell-centre lattice points are not nodes), and
+    ``edges(side)`` the corner pairs of the cell edges along a side ('bottom',
+    'top', 'left', 'right'), optionally restricted to x or y ranges."""
+
+    def __init__(self, x0, x1, y0, y1, nx, ny, order=1, first=0):
+        self.x0, self.x1, self.y0, self.y1, self.nx, self.ny, self.order = x0, x1, y0, y1, nx, ny, order
+        o = order
+        xs = np.linspace(x0, x1, o * nx + 1)
+        ys = np.linspace(y0, y1, o * ny + 1)
+        self._id = -np.ones((o * nx + 1, o * ny + 1), dtype=int)
+        nodes = []
+        for j in range(o * ny + 1):
+            for i in range(o * nx + 1):
+                if o == 2 and i % 2 == 1 and j % 2 == 1:
+                    continue                      # Q8: no node at the cell centre
+                self._id[i, j] = first + len(nodes)
+                nodes.append((xs[i], ys[j]))
+        self.nodes = np.array(nodes)
+        self.elements = []
+        for j in range(ny):
+            for i in range(nx):
+                a, b = o * i, o * j
+                corners = [self.node(a, b), self.node(a + o, b), self.node(a + o, b + o), self.node(a, b + o)]
+                if o == 2:
+                    corners += [self.node(a + 1, b), self.node(a + 2, b + 1), self.node(a + 1, b + 2),
+                                self.node(a, b + 1)]
+                self.elements.append(tuple(corners))
+
+    def node(self, i, j):
+        return int(self._id[i, j])
+
+    def side_nodes(self, side):
+        o = self.order
+        if side == "bottom":
+            return [self.node(i, 0) for i in range(o * self.nx + 1)]
+        if side == "top":
+            return [self.node(i, o * self.ny) for i in range(o * self.nx + 1)]
+        if side == "left":
+            return [self.node(0, j) for j in range(o * self.ny + 1)]
+        if side == "right":
+            return [self.node(o * self.nx, j) for j in range(o * self.ny + 1)]
+        raise ValueError(side)
+
+    def edges(self, side, lo=-np.inf, hi=np.inf):
+        """Corner pairs (a, b) of the cell edges on a side whose middle lies in [lo, hi]
+        (x for bottom/top, y for left/right)."""
+        o = self.order
+        out = []
+        if side in ("bottom", "top"):
+            j = 0 if side == "bottom" else o * self.ny
+            for i in range(self.nx):
+                xm = self.nodes[self.node(o * i, j) - self._first, 0] * 0.5 + \
+                    self.nodes[self.node(o * i + o, j) - self._first, 0] * 0.5
+                if lo <= xm <= hi:
+                    out.append((self.node(o * i, j), self.node(o * i + o, j)))
+        else:
+            i = 0 if side == "left" else o * self.nx
+            for j in range(self.ny):
+                ym = 0.5 * (self.nodes[self.node(i, o * j) - self._first, 1] +
+                            self.nodes[self.node(i, o * j + o) - self._first, 1])
+                if lo <= ym <= hi:
+                    out.append((self.node(i, o * j), self.node(i, o * j + o)))
+        return out
+
+    @property
+    def _first(self):
+        return int(self._id[0, 0])
+
+
+def structured_quads(grids):
+    """Concatenate Grids built with consecutive ``first`` offsets: (nodes, elements)."""
+    nodes = np.vstack([g.nodes for g in grids])
+    elements = [e for g in grids for e in g.elements]
+    return nodes, elements
+
+
+def smooth_ramp(t_ramp, n=41, t_end=1.0e3):
+    """(t, f) points of f = (1 - cos(pi t / t_ramp)) / 2 up to t_ramp, then 1: a drive
+    that starts with zero acceleration and reaches its value without a kink (few
+    waves excited)."""
+    t = np.linspace(0.0, t_ramp, n)
+    f = 0.5 * (1.0 - np.cos(np.pi * t / t_ramp))
+    return np.vstack([np.append(t, t_end), np.append(f, 1.0)]).T
+
+
+def check_energy(ck, series, tol=0.01, what="energy audit"):
+    """The energy audit of a run, against the energy in play (the largest of the
+    external work and of kinetic + elastic + plastic + cohesive + dissipated):
+    max |balance_error| below tol, and the contacts create no energy: the
+    dissipation other than damage (friction, impacts; `dissipated` -
+    `damage_dissipated`) never below -tol. The second check catches an NLGS left
+    unconverged on a stiff cohesive network, whose impulses violate the laws while
+    the audit still balances (the spurious work is booked as negative dissipation).
+    Returns (balance ratio, lowest non-damage dissipation ratio)."""
+    s = series
+    work = np.abs(s["work_gravity"]) + np.abs(s["work_forces"]) + np.abs(s["work_supports"])
+    held = s["kinetic_energy"] + s["elastic_energy"] + s["plastic_work"] + s["cohesive_energy"] + \
+        np.abs(s["dissipated"])
+    scale = max(float(np.max(work)), float(np.max(held)), 1e-300)
+    ratio = float(np.max(np.abs(s["balance_error"]))) / scale
+    ck.at_most(f"{what}: max |balance_error| / energy", ratio, tol,
+               note=f"energy scale {scale:.4g} J/m")
+    other = float(np.min(s["dissipated"] - s["damage_dissipated"])) / scale
+    ck.at_most(f"{what}: -min(dissipated - damage) / energy", -other, tol,
+               note="contacts create no energy")
+    return ratio, other
+
+
+def run_dir_from_argv(default=None):
+    if len(sys.argv) > 1:
+        return Path(sys.argv[1])
+    if default is None:
+        raise SystemExit("usage: check.py RUN_DIR")
+    return Path(default)
