@@ -1,5 +1,5 @@
 """Meshed bodies and cracks in a Fracas results file (OUTBOX/fracas.h5), on top of
-:class:`fracas_tools.post.Run` (the one reader of fracas.h5; this module only adds the
+:class:`fracas_tools.results.Run` (the one reader of fracas.h5; this module only adds the
 groups meshed runs write: /mesh, and per snapshot mesh_X, mesh_V, mesh_gauss_points,
 cracks; doc/output_layout.md and doc/fracture.md).
 
@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .post import Run, _attr
+from .results import Run, _attr
 
 __all__ = ["MeshRun", "MeshState", "von_mises"]
 

@@ -3,7 +3,7 @@ check.py): structured meshes, the energy-audit check, the reference of each case
 
 Results are read with fracas_tools.fracture.MeshRun (on top of fracas_tools.post.Run,
 the one fracas.h5 reader); checks print one line per quantity with
-tools/validation/valtools.Checker.
+fracas_tools.checks.Checker.
 """
 
 import sys
@@ -16,11 +16,11 @@ for _p in (ROOT / "tools", ROOT / "tools" / "validation"):
     if str(_p) not in sys.path:
         sys.path.insert(0, str(_p))
 
-from valtools import Checker  # noqa: E402,F401
+from fracas_tools.checks import Checker  # noqa: E402,F401
 from fracas_tools.fracture import MeshRun  # noqa: E402,F401
 
 __all__ = ["ROOT", "Checker", "MeshRun", "Grid", "structured_quads", "check_energy",
-           "run_dir_from_argv", "smooth_ramp"]
+           "run_dir_from_argv", "smooth_ramp", "edge_traction", "perturb_nodes", "safe_alert"]
 
 
 class Grid:
@@ -101,6 +101,105 @@ def structured_quads(grids):
     nodes = np.vstack([g.nodes for g in grids])
     elements = [e for g in grids for e in g.elements]
     return nodes, elements
+
+
+def edge_traction(bodies, group, traction):
+    """Nodal forces of a uniform traction (Pa, vector (tx, ty)) on the boundary
+    edges of an edge group: each edge of length l adds traction * l / 2 to its two
+    node copies, on the body that owns it (exploded meshes: every element carries
+    its own share). Constant force drives (DRV_DOF force, applied from t = 0).
+    Returns the total force."""
+    total = np.zeros(2)
+    for b in bodies:
+        forces = {}
+        for p, q in b.edge_groups.get(group, []):
+            length = float(np.hypot(*(b.nodes[q - 1] - b.nodes[p - 1])))
+            for n in (p, q):
+                forces[n] = forces.get(n, np.zeros(2)) + 0.5 * length * np.asarray(traction, dtype=float)
+        for n, f in sorted(forces.items()):
+            for dof in (1, 2):
+                if f[dof - 1] != 0.0:
+                    b.impose_force([n], (dof,), ct=float(f[dof - 1]))
+            total += f
+    return total
+
+
+def perturb_nodes(mesh, fraction, seed=1):
+    """Move the interior nodes of a Mesh2D (not on the boundary nor on any edge
+    group: notches and loaded edges stay straight) by a random offset uniform in a
+    disc of radius fraction x the shortest edge at the node (seeded: the same mesh
+    every time). Breaks the straight lines of a regular mesh, along which cracks
+    would otherwise run (czm.md §4.2, nodal perturbation). Elements stay valid for
+    fraction < 0.5; a node whose move would turn an element over is left in place."""
+    from fracas_tools.mesh import Mesh2D
+    rng = np.random.default_rng(seed)
+    xy = mesh.nodes.copy()
+    fixed = set()
+    for key, sharing in mesh.edges().items():
+        if len(sharing) == 1:
+            fixed.update(key)
+    for edges in mesh.edge_groups.values():
+        for a, b in edges:
+            fixed.update((a, b))
+    shortest = np.full(len(xy), np.inf)
+    around = [[] for _ in range(len(xy))]
+    for e, (kind, nodes) in enumerate(mesh.elements):
+        nc = 3 if kind.startswith("T") else 4
+        c = nodes[:nc]
+        for k in range(nc):
+            a, b = c[k], c[(k + 1) % nc]
+            d = float(np.hypot(*(xy[a] - xy[b])))
+            shortest[a] = min(shortest[a], d)
+            shortest[b] = min(shortest[b], d)
+            around[a].append(e)
+
+    def area(e, pts):
+        kind, nodes = mesh.elements[e]
+        c = pts[list(nodes[:3 if kind.startswith("T") else 4])]
+        return 0.5 * np.sum(c[:, 0] * np.roll(c[:, 1], -1) - np.roll(c[:, 0], -1) * c[:, 1])
+
+    for n in range(len(xy)):
+        r = fraction * shortest[n] * np.sqrt(rng.random())
+        phi = 2.0 * np.pi * rng.random()
+        if n in fixed or not np.isfinite(shortest[n]):
+            continue
+        old = xy[n].copy()
+        xy[n] = old + r * np.array([np.cos(phi), np.sin(phi)])
+        if any(area(e, xy) <= 0.0 for e in around[n]):
+            xy[n] = old
+    return Mesh2D(xy, mesh.elements, mesh.phases, {k: v.tolist() for k, v in mesh.node_groups.items()},
+                  mesh.edge_groups)
+
+
+def safe_alert(mesh, apab=(0.25, 0.75)):
+    """The largest alert distance that glues every CLxxx point of an exploded mesh
+    to its own partner only: the smallest distance from a candidate point (at apab
+    on an element edge) to another edge of an element sharing a corner with it.
+    The see rules glue, at the first step, every candidate/antagonist pair of the
+    family within the alert distance, whatever its gap: a wider alert glues a point
+    to a neighbour's edge with a gap of the order of the alert, an initially
+    stretched spring (a large spurious energy). The alert should also exceed the
+    law's full-separation opening, so that a contact is not dropped before it is
+    broken."""
+    edges_at = {}
+    for kind, nodes in mesh.elements:
+        nc = 3 if kind.startswith("T") else 4
+        c = nodes[:nc]
+        for k in range(nc):
+            e = (c[k], c[(k + 1) % nc])
+            for n in e:
+                edges_at.setdefault(n, set()).add((min(e), max(e)))
+    xy = mesh.nodes
+    best = np.inf
+    for (a, b), _ in mesh.edges().items():
+        others = (edges_at[a] | edges_at[b]) - {(a, b)}
+        for s in apab:
+            p = (1.0 - s) * xy[a] + s * xy[b]
+            for c, d in others:
+                u = xy[d] - xy[c]
+                t = np.clip(np.dot(p - xy[c], u) / np.dot(u, u), 0.0, 1.0)
+                best = min(best, float(np.hypot(*(p - xy[c] - t * u))))
+    return best
 
 
 def smooth_ramp(t_ramp, n=41, t_end=1.0e3):
