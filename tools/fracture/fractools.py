@@ -20,7 +20,8 @@ from fracas_tools.checks import Checker  # noqa: E402,F401
 from fracas_tools.fracture import MeshRun  # noqa: E402,F401
 
 __all__ = ["ROOT", "Checker", "MeshRun", "Grid", "structured_quads", "check_energy",
-           "run_dir_from_argv", "smooth_ramp", "edge_traction", "perturb_nodes", "safe_alert"]
+           "run_dir_from_argv", "smooth_ramp", "edge_traction", "perturb_nodes", "safe_alert",
+           "tip_speed", "crack_arms", "crack_angle", "wave_speeds"]
 
 
 class Grid:
@@ -232,6 +233,142 @@ def check_energy(ck, series, tol=0.01, what="energy audit"):
     ck.at_most(f"{what}: -min(dissipated - damage) / energy", -other, tol,
                note="contacts create no energy")
     return ratio, other
+
+
+def wave_speeds(young, poisson, rho):
+    """(c_d, c_s, c_R) in m/s of an isotropic solid in plane strain: dilatational,
+    shear, and Rayleigh speed, the root of (2 - x)^2 = 4 sqrt(1 - x) sqrt(1 - k x)
+    with x = (c_R/c_s)^2, k = (c_s/c_d)^2."""
+    g = young / (2.0 * (1.0 + poisson))
+    cs = (g / rho) ** 0.5
+    cd = (young * (1.0 - poisson) / ((1.0 + poisson) * (1.0 - 2.0 * poisson)) / rho) ** 0.5
+    k = (cs / cd) ** 2
+
+    def f(x):
+        return (2.0 - x) ** 2 - 4.0 * np.sqrt(1.0 - x) * np.sqrt(1.0 - k * x)
+
+    lo, hi = 0.5, 1.0 - 1e-12
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if f(lo) * f(mid) > 0 else (lo, mid)
+    return cd, cs, cs * (0.5 * (lo + hi)) ** 0.5
+
+
+def tip_speed(mr, start, window, radius, min_arm=None):
+    """Crack tip speeds of a meshed run (MeshRun), branching cracks included: at each
+    snapshot the crack ends (crack_arms: ends farther than ``radius`` from ``start``,
+    the notch tip, side pieces shorter than min_arm pruned); an end's advance over a
+    window of at least ``window`` is its distance to the nearest end of the earlier
+    snapshot (a new branch counts from the tip it left), so the speed of every arm is
+    followed even when the longest crack's tip switches arms. Straight-line advances
+    between snapshots: a lower bound of the path speed on curved paths, an upper bound
+    on zig-zags along element edges. Returns a dict: max (over ends and windows),
+    mean (advance of the end farthest from start between the first and the last
+    snapshot at which it moved, over that time), t0, t1, ends (per snapshot)."""
+    t = mr.times
+    ends = []
+    for i in range(len(mr.snapshot_names)):
+        cr = mr.state(i).cracks
+        ends.append(np.array(crack_arms(cr, start, radius, min_arm)) if cr is not None and len(cr["segments"])
+                    else np.zeros((0, 2)))
+    have = [i for i, e in enumerate(ends) if len(e)]
+    if len(have) < 2:
+        return dict(mean=0.0, max=0.0, t0=np.nan, t1=np.nan, ends=ends)
+    best = 0.0
+    for a in have:
+        b = next((k for k in have if t[k] - t[a] >= window * (1.0 - 1e-9)), None)
+        if b is None:
+            break
+        adv = max(float(np.min(np.hypot(*(ends[a] - e).T))) for e in ends[b])
+        best = max(best, adv / (t[b] - t[a]))
+    far = np.array([np.max(np.hypot(*(ends[i] - start).T)) if len(ends[i]) else np.nan for i in range(len(t))])
+    moved = [i for i in have[1:] if far[i] > far[have[0]]]
+    t0, t1 = t[have[0]], t[moved[-1]] if moved else t[have[0]]
+    mean = (far[moved[-1]] - far[have[0]]) / (t1 - t0) if moved else 0.0
+    return dict(mean=mean, max=best, t0=t0, t1=t1, ends=ends)
+
+
+def _crack_graph(cracks):
+    """Adjacency (dict vertex -> set of vertices) of all crack segments."""
+    adj = {}
+    for a, b in np.asarray(cracks["segments"], dtype=int):
+        adj.setdefault(int(a), set()).add(int(b))
+        adj.setdefault(int(b), set()).add(int(a))
+    return adj
+
+
+def crack_arms(cracks, start, radius, min_arm=None):
+    """The ends of the cracks that come within ``radius`` of ``start`` (the notch
+    tip), farther than ``radius`` from it, once dangling side pieces shorter than ``min_arm`` (default radius)
+    are pruned (single broken edges beside a zig-zag path are not branches). A
+    straight crack has one arm; a branched one two or more. Returns the end points."""
+    min_arm = radius if min_arm is None else min_arm
+    pts = np.asarray(cracks["points"], dtype=float)
+    adj = _crack_graph(cracks)
+    # only the cracks that reach the start (within radius): others are not its arms
+    todo = [v for v in adj if np.hypot(*(pts[v] - start)) <= radius]
+    keep = set(todo)
+    while todo:
+        v = todo.pop()
+        for w in adj[v]:
+            if w not in keep:
+                keep.add(w)
+                todo.append(w)
+    adj = {v: n for v, n in adj.items() if v in keep}
+    changed = True
+    while changed:
+        changed = False
+        for leaf in [v for v, n in adj.items() if len(n) == 1]:
+            if leaf not in adj or len(adj[leaf]) != 1:
+                continue
+            chain, length, v, came = [leaf], 0.0, leaf, None
+            while True:
+                nxt = [w for w in adj[v] if w != came]
+                if len(adj[v]) > 2 or not nxt or (v != leaf and len(adj[v]) == 1):
+                    break
+                came, v = v, nxt[0]
+                length += float(np.hypot(*(pts[v] - pts[came])))
+                chain.append(v)
+            if len(adj[v]) > 2 and length < min_arm:
+                for a, b in zip(chain[:-1], chain[1:]):
+                    adj[a].discard(b)
+                    adj[b].discard(a)
+                for w in chain[:-1]:
+                    if not adj.get(w):
+                        adj.pop(w, None)
+                changed = True
+    ends = [v for v, n in adj.items() if len(n) == 1 and np.hypot(*(pts[v] - start)) > radius]
+    return [pts[v] for v in ends]
+
+
+def crack_angle(cracks, start, r_min, r_max):
+    """Direction (degrees from +x, counter-clockwise) of the crack leaving ``start``:
+    the angle of the least-squares line through the crack vertices between r_min and
+    r_max from start, within the crack containing the vertex nearest start; also the
+    number of vertices used. Returns (angle, n)."""
+    pts = np.asarray(cracks["points"], dtype=float)
+    if len(pts) == 0:
+        return np.nan, 0
+    adj = _crack_graph(cracks)
+    first = int(np.argmin(np.hypot(*(pts - start).T)))
+    seen, todo = {first}, [first]
+    while todo:
+        v = todo.pop()
+        for w in adj.get(v, ()):
+            if w not in seen:
+                seen.add(w)
+                todo.append(w)
+    sel = np.array(sorted(seen))
+    d = pts[sel] - start
+    r = np.hypot(d[:, 0], d[:, 1])
+    d = d[(r >= r_min) & (r <= r_max)]
+    if len(d) < 2:
+        return np.nan, len(d)
+    # direction through start: principal direction of the offsets, oriented outwards
+    u = np.linalg.svd(d, full_matrices=False)[2][0]
+    if np.dot(d.mean(axis=0), u) < 0:
+        u = -u
+    return float(np.degrees(np.arctan2(u[1], u[0]))), len(d)
 
 
 def run_dir_from_argv(default=None):
