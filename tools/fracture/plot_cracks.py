@@ -74,6 +74,13 @@ def main():
     coll, s = draw(mr, ax, a.snapshot, a.field, a.deform)
     if coll is not None:
         fig.colorbar(coll, ax=ax, label="von Mises stress (Pa)" if a.field == "von_mises" else a.field)
+    if a.mm:
+        from matplotlib.ticker import FuncFormatter
+        mm = FuncFormatter(lambda v, _: f"{v * 1e3:g}")
+        ax.xaxis.set_major_formatter(mm)
+        ax.yaxis.set_major_formatter(mm)
+        ax.set_xlabel("x (mm)")
+        ax.set_ylabel("y (mm)")
     ax.set_title(a.title or f"t = {s.time * 1e6:.1f} us")
     fig.tight_layout()
     fig.savefig(a.out, dpi=120)

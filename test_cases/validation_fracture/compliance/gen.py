@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Artificial compliance of an exploded mesh (doc/fracture.md §4, czm.md §3.3 and §4.1).
+"""Artificial compliance of an exploded mesh (doc/fracture.md §2, czm.md §3.3 and §4.1).
 
 Three bars of N = 10 square Q4 elements (h = 10 mm, one row), each element its own
 MAILx body glued to its neighbours by MP3_CZM interfaces of stiffness C = r E / h with
