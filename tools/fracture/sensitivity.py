@@ -6,7 +6,7 @@ lc = 2.5 mm): crack angle at the notch tip, where the tip is at 60 us, the tip s
 the energy audit, the run time. Takes about 15 min on one idle core (label long:
 not in ctest; results committed in doc/fracture.md).
 
-    sensitivity.py WORK_DIR [--fracas build/release/bin/fracas] [--png OUT.png]
+    sensitivity.py WORK_DIR [--fracas build/release/bin/fracas] [--png OUT.png] [--reuse]
 """
 import argparse
 import subprocess
@@ -48,14 +48,16 @@ def main():
     ap.add_argument("work")
     ap.add_argument("--fracas", default=str(ROOT / "build" / "release" / "bin" / "fracas"))
     ap.add_argument("--png", default=None)
+    ap.add_argument("--reuse", action="store_true", help="measure the runs already in WORK_DIR")
     a = ap.parse_args()
     work = Path(a.work)
     rows, paths = [], {}
     for name, p in gen.SENSITIVITY.items():
         d = work / name
-        gen.build(name).write(d)
         t = time.time()
-        subprocess.run([a.fracas, "-q", "--overwrite", str(d)], check=True)
+        if not a.reuse:
+            gen.build(name).write(d)
+            subprocess.run([a.fracas, "-q", "--overwrite", str(d)], check=True)
         wall = time.time() - t
         m, cracks = measure(d, p)
         paths[name] = cracks

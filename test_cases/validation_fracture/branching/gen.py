@@ -23,7 +23,7 @@ SMAX = 5.0e6                       # cohesive strength: E G_c / SMAX^2 = 3.8 mm
 CH_E = 50.0
 PERTURB = 0.2
 NOTCH_TIP = (0.05, 0.02)
-SPEED_WINDOW = 10e-6               # tip speed measured over at least this time
+SPEED_WINDOW = 6e-6                # tip speed measured over at least this time (3 snapshots of quick)
 BRANCH_RADIUS = 5e-3               # crack arms counted beyond this distance from the notch tip
 VARIANTS = {
     "quick": dict(lc=2.0e-3, dt=2.0e-7, t_end=60e-6, every=10),

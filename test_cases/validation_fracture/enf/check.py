@@ -66,6 +66,10 @@ def main():
     broken = lengths[-1]
     ck.true("the crack grows", broken > 5.0 * p["el"], ours=f"{broken * 1e3:.2f} mm", ref="> 5 elements")
     dd = s["damage_dissipated"][-1]
+    damaged = s["damaged_length"][-1]
+    ck.info("damaged (not broken) length at the end (mm)", damaged * 1e3,
+            note=f"damage dissipated / G_c = {dd / GC * 1e3:.2f} mm; broken + damaged = "
+                 f"{(broken + damaged) * 1e3:.2f} mm")
     ck.rel("damage dissipated / (G_c x broken length)", dd / (GC * broken), 1.0, 0.05,
            note="includes the damaged process zone ahead of the arrested tip")
     check_energy(ck, s)

@@ -21,9 +21,9 @@ E, NU, RHO = 135.3e9, 0.3, 1500.0
 GC = 280.0                             # mode II fracture energy (MP3: one w for all modes)
 H = 1.5e-3                             # arm thickness (beam 2 H)
 VARIANTS = {
-    "quick": dict(half_span=20e-3, a0=10e-3, el=0.5e-3, ny=2, smax=60e6, v=0.5, t_ramp=0.2e-3,
+    "quick": dict(half_span=20e-3, a0=10e-3, el=0.5e-3, ny=2, smax=100e6, v=0.5, t_ramp=0.2e-3,
                   dt=5e-7, delta_end=0.35e-3, every=10),
-    "full": dict(half_span=30e-3, a0=15e-3, el=0.375e-3, ny=3, smax=60e6, v=0.5, t_ramp=0.3e-3,
+    "full": dict(half_span=30e-3, a0=15e-3, el=0.375e-3, ny=3, smax=100e6, v=0.5, t_ramp=0.3e-3,
                  dt=5e-7, delta_end=0.6e-3, every=10),
 }
 CH_E = 50.0

@@ -30,7 +30,7 @@ RISE = 1.0e-6
 NOTCH_TIP = (0.05, 0.025)
 ANGLE_RANGE = (4e-3, 20e-3)        # crack direction fitted between these distances from the notch tip
 ANGLE_REF, ANGLE_TOL = 70.0, 10.0  # Kalthoff & Winkler's experiments; the spread of simulations (degrees)
-SPEED_WINDOW = 10e-6               # tip speed measured over at least this time
+SPEED_WINDOW = 6e-6                # tip speed measured over at least this time (3 snapshots of quick)
 VARIANTS = {
     "quick": dict(lc=3.0e-3, dt=0.25e-6, t_end=60e-6, every=8),
     "full": dict(lc=2.5e-3, dt=0.25e-6, t_end=60e-6, every=8),
