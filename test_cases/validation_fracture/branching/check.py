@@ -27,7 +27,7 @@ def main():
     t, tips, lengths = mr.tip_history()
     started = np.flatnonzero(lengths > 0.0)
     ck.true("a crack grows", len(started) > 0 and lengths[-1] > 5.0 * p["lc"],
-            ours=f"{lengths[-1] * 1e3:.1f} mm", ref=f"> 5 elements")
+            ours=f"{lengths[-1] * 1e3:.1f} mm", ref="> 5 elements")
     origin = mr.state(-1).cracks["main_origin"]
     ck.at_most("crack origin: distance to the notch tip (m)", float(np.hypot(*(origin - gen.NOTCH_TIP))),
                2.0 * p["lc"], note=f"origin ({origin[0] * 1e3:.1f}, {origin[1] * 1e3:.1f}) mm")

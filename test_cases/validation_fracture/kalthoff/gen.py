@@ -12,8 +12,6 @@ notch lips uncohesive.
 import sys
 from pathlib import Path
 
-import numpy as np
-
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[2] / "tools" / "fracture"))
