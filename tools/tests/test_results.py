@@ -73,6 +73,8 @@ def test_meshed_layout_is_read(h5):
                 del g["bodies"][k]
                 g["bodies"][k] = a
             g.create_group("mesh")["stress"] = np.ones((1, 4))
+            g["mesh_X"] = np.full((3, 2), 0.5)              # as fracas writes the meshes' state
+            g["mesh_gauss_points"] = np.zeros((1, 13))
     res = Results(h5)
     assert res.body_model == "MAILx"
     assert res.X.shape[2] == 2 and res.position.shape == res.X.shape
@@ -80,6 +82,9 @@ def test_meshed_layout_is_read(h5):
     assert res.mesh["elements"].tolist() == [[1, 2, 3]]
     snap = res.snapshot(-1)
     assert snap.X.shape == (nb, 2) and snap.mesh["stress"].shape == (1, 4)
+    assert snap.mesh["X"].tolist() == [[0.5, 0.5]] * 3 and snap.mesh["gauss_points"].shape == (1, 13)
+    xs = res.snapshot_arrays("mesh_X")
+    assert len(xs) == res.n_snapshots and all(np.array_equal(x, snap.mesh["X"]) for x in xs)
 
 
 def test_checker_counts():
