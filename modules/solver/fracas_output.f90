@@ -906,9 +906,10 @@ contains
   end subroutine cracks_snapshot
 
   !> The meshed bodies' state in the newest snapshot: nodal displacements and
-  !> velocities (2, nodes), Gauss-point states (13, Gauss points: stress,
-  !> strain, plastic strain, p; see /mesh/gauss_point_fields), and the side
-  !> models of the contacts.
+  !> velocities (2, nodes), the force of the velocity drives on their nodes
+  !> (2, nodes; when some dof is driven), Gauss-point states (13, Gauss points:
+  !> stress, strain, plastic strain, p; see /mesh/gauss_point_fields), and the
+  !> side models of the contacts.
   subroutine mesh_snapshot(o, sc)
     type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
@@ -919,6 +920,8 @@ contains
     call results_last_snapshot(o%h5, g)
     call h5_write_dataset(g, 'mesh_X', sc%meshes%x)
     call h5_write_dataset(g, 'mesh_V', sc%meshes%v)
+    ! Force of the velocity drives on their nodes (reactions; zero on free dofs).
+    if (any(sc%meshes%driven)) call h5_write_dataset(g, 'mesh_F_support', sc%meshes%fsupport)
     call h5_write_dataset(g, 'mesh_gauss_points', gp)
     call h5_write_dataset(g, 'cd_model', int(sc%contacts%cdm(1:sc%contacts%n), ik))
     call h5_write_dataset(g, 'an_model', int(sc%contacts%anm(1:sc%contacts%n), ik))

@@ -1,0 +1,102 @@
+#!/usr/bin/python3
+"""Mesh and time-step sensitivity of one crack path (doc/fracture.md): the
+Kalthoff-Winkler case (test_cases/validation_fracture/kalthoff) on three meshes
+(lc = 3, 2.5, 2 mm at dt = 0.25 us) and two time steps (dt = 0.25, 0.125 us at
+lc = 2.5 mm): crack angle at the notch tip, where the tip is at 60 us, the tip speed,
+the energy audit, the run time. Takes about 15 min on one idle core (label long:
+not in ctest; results committed in doc/fracture.md).
+
+    sensitivity.py WORK_DIR [--fracas build/release/bin/fracas] [--png OUT.png] [--reuse]
+"""
+import argparse
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.dont_write_bytecode = True
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(ROOT / "test_cases" / "validation_fracture" / "kalthoff"))
+import gen  # noqa: E402
+from fractools import MeshRun, crack_angle, tip_speed, wave_speeds  # noqa: E402
+
+
+def measure(run_dir, p):
+    mr = MeshRun(run_dir)
+    cracks = mr.state(-1).cracks
+    angle, n = crack_angle(cracks, gen.NOTCH_TIP, *gen.ANGLE_RANGE)
+    speed = tip_speed(mr, gen.NOTCH_TIP, gen.SPEED_WINDOW, 2.0 * p["lc"])
+    ends = speed["ends"][-1]
+    far = ends[np.argmax(np.hypot(*(ends - gen.NOTCH_TIP).T))] if len(ends) else [np.nan, np.nan]
+    s = mr.series
+    work = np.abs(s["work_supports"]) + np.abs(s["work_forces"])
+    held = s["kinetic_energy"] + s["elastic_energy"] + s["cohesive_energy"] + np.abs(s["dissipated"])
+    closure = float(np.max(np.abs(s["balance_error"]))) / max(float(np.max(work)), float(np.max(held)))
+    cr = wave_speeds(gen.E, gen.NU, gen.RHO)[2]
+    out = dict(angle=angle, n=n, tip=far, t0=speed["t0"], mean=speed["mean"] / cr, max=speed["max"] / cr,
+               closure=closure, bodies=len(mr.body_nodes), damage=float(s["damage_dissipated"][-1]))
+    mr.close()
+    return out, cracks
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("work")
+    ap.add_argument("--fracas", default=str(ROOT / "build" / "release" / "bin" / "fracas"))
+    ap.add_argument("--png", default=None)
+    ap.add_argument("--reuse", action="store_true", help="measure the runs already in WORK_DIR")
+    a = ap.parse_args()
+    work = Path(a.work)
+    rows, paths = [], {}
+    for name, p in gen.SENSITIVITY.items():
+        d = work / name
+        t = time.time()
+        if not a.reuse:
+            gen.build(name).write(d)
+            subprocess.run([a.fracas, "-q", "--overwrite", str(d)], check=True)
+        wall = time.time() - t
+        m, cracks = measure(d, p)
+        paths[name] = cracks
+        m.update(name=name, lc=p["lc"], dt=p["dt"], wall=wall)
+        rows.append(m)
+        print(f"{name}: angle {m['angle']:.1f} deg ({m['n']} vertices), tip at 60 us ({m['tip'][0] * 1e3:.1f}, "
+              f"{m['tip'][1] * 1e3:.1f}) mm, seen first {m['t0'] * 1e6:.0f} us, speed mean {m['mean']:.2f} "
+              f"max {m['max']:.2f} c_R, closure {m['closure']:.1e}, {m['bodies']} bodies, {wall:.0f} s", flush=True)
+    print("\n| lc (mm) | dt (µs) | elements | angle (°) | tip at 60 µs (mm) | crack seen first (µs) | "
+          "mean / max tip speed (c_R) | energy closure | run time (s) |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for m in rows:
+        print(f"| {m['lc'] * 1e3:g} | {m['dt'] * 1e6:g} | {m['bodies']} | {m['angle']:.1f} | "
+              f"({m['tip'][0] * 1e3:.1f}, {m['tip'][1] * 1e3:.1f}) | {m['t0'] * 1e6:.0f} | "
+              f"{m['mean']:.2f} / {m['max']:.2f} | {m['closure']:.1e} | {m['wall']:.0f} |")
+    if a.png:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(6, 6))
+        for name, cr in paths.items():
+            segs = cr["points"][cr["segments"]] * 1e3
+            from matplotlib.collections import LineCollection
+            color = plt.cm.tab10(list(paths).index(name))
+            ax.add_collection(LineCollection(segs, colors=[color], linewidths=1.2, label=name))
+        ax.plot([0, 50], [25, 25], "k", lw=2)
+        th = np.radians(70.0)
+        ax.plot([50, 50 + 40 * np.cos(th)], [25, 25 + 40 * np.sin(th)], "k--", lw=0.8, label="70 deg")
+        ax.set_xlim(0, 100)
+        ax.set_ylim(0, 100)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (mm)")
+        ax.set_ylabel("y (mm)")
+        ax.legend(loc="upper left", fontsize=8)
+        ax.set_title("Kalthoff-Winkler: crack paths at 60 us")
+        fig.tight_layout()
+        fig.savefig(a.png, dpi=110)
+        print(f"wrote {a.png}")
+
+
+if __name__ == "__main__":
+    main()
