@@ -75,8 +75,10 @@ module fracas_mailx
     real(wp), allocatable :: mdiag(:, :)       !< (2,nnodes) lumped mass (row sums if consistent)
     ! Forces of the step (2,nnodes): external (θ-average), internal at the start
     ! of the step and at the current iterate, Newton residual, contact impulses
-    ! of the last solve, force applied by the velocity drives (end of step).
+    ! of the last solve, force applied by the velocity drives (end of step),
+    ! inertia force M (V - V_begin) / h of the last step.
     real(wp), allocatable :: fext(:, :), fint_begin(:, :), fint(:, :), res(:, :), imp(:, :), fsupport(:, :)
+    real(wp), allocatable :: finert(:, :)
     ! Linear algebra per body: small bodies dense (K, consistent M, A_ff⁻¹ with
     ! zero rows and columns on driven dofs, ndof² each from dfirst(b)), large
     ! ones sparse.
@@ -137,11 +139,11 @@ contains
               m%vfree(2, nn), m%driven(2, nn), m%movable(m%n), m%el_kind(ne), m%el_mat(ne), m%el_first(ne + 1), &
               m%el_nodes(nel_nodes), m%el_gp(ne + 1), m%gp(gp_size, ng), m%gp_begin(gp_size, ng), &
               m%nonlinear(m%n), m%lumped(m%n), m%mdiag(2, nn), m%fext(2, nn), m%fint_begin(2, nn), &
-              m%fint(2, nn), m%res(2, nn), m%imp(2, nn), m%fsupport(2, nn))
+              m%fint(2, nn), m%res(2, nn), m%imp(2, nn), m%fsupport(2, nn), m%finert(2, nn))
     m%x = 0.0_wp; m%v = 0.0_wp; m%vfree = 0.0_wp
     m%driven = .false.
     m%gp = 0.0_wp
-    m%fext = 0.0_wp; m%fint = 0.0_wp; m%res = 0.0_wp; m%imp = 0.0_wp; m%fsupport = 0.0_wp
+    m%fext = 0.0_wp; m%fint = 0.0_wp; m%res = 0.0_wp; m%imp = 0.0_wp; m%fsupport = 0.0_wp; m%finert = 0.0_wp
     ! Bulk laws of the materials meshes use (others may be RIGID).
     allocate (m%mats(size(deck%materials)), used(size(deck%materials)))
     used = .false.
@@ -707,6 +709,7 @@ contains
         i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
         call body_m_times(m, b, m%v(:, i1:i2) - m%vbegin(:, i1:i2), r(:, i1:i2))
       end do
+      m%finert = r / m%h
       r = m%h * m%fext - r - m%h * ((1.0_wp - m%theta) * m%fint_begin + m%theta * m%fint)
       m%fsupport = 0.0_wp
       where (m%driven) m%fsupport = -(r + m%imp) / m%h

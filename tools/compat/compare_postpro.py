@@ -2,10 +2,11 @@
 """Compare the POSTPRO/*.DAT files of a Fracas run with LMGC90's for the same deck,
 column by column.
 
-    compare_postpro.py OURS_POSTPRO_DIR LMGC90_POSTPRO_DIR [--files F ...] [--rtol R]
+    compare_postpro.py OURS_POSTPRO_DIR LMGC90_POSTPRO_DIR [--files F ...] [--rtol R] [--lines N]
 
 Every file of LMGC90's folder that Fracas writes (SOLVER_INFORMATIONS.DAT,
-BODY_*.DAT, TORQUE_*.DAT, DISSIPATED_ENERGY.DAT) must exist in ours with the
+BODY_*.DAT, TORQUE_*.DAT, DISSIPATED_ENERGY.DAT, and for meshed bodies Dep_*.DAT,
+Fint_*.DAT) must exist in ours with the
 same number of lines and columns, and the same line format (column widths).
 
 Tolerance, to the printed precision: LMGC90 prints 8 significant digits (ES14.7,
@@ -37,6 +38,8 @@ GROUPS = {
     "TORQUE": [[1, 2, 4, 5], [3, 6]],                    # forces | torques
     "SOLVER_INFORMATIONS": [],
     "DISSIPATED_ENERGY": [[1, 2]],
+    "Dep": [[1, 2], [3, 4]],                             # mean displacement | mean velocity
+    "Fint": [list(range(1, 11))],                        # Reac, Fint, Finert, Fext, Res: forces
 }
 COUNT_COLUMNS = {"SOLVER_INFORMATIONS": [1, 5]}
 NORM_COLUMNS = {"SOLVER_INFORMATIONS": [2, 3, 4]}
@@ -45,6 +48,8 @@ LINE_FORMAT = {  # widths of the fields of a line: ES15.8, then 1X + ES14.7 or 1
     "TORQUE": [15] + [15] * 6,
     "SOLVER_INFORMATIONS": [15, 9, 15, 15, 15, 9],
     "DISSIPATED_ENERGY": [15, 15, 15],
+    "Dep": [15] * 5,
+    "Fint": [15] * 11,
 }
 
 
@@ -76,10 +81,12 @@ def check_line_format(path, widths):
     return None
 
 
-def compare_file(ours, ref, rtol):
+def compare_file(ours, ref, rtol, lines=None):
     kind = kind_of(ref.name)
     a = np.loadtxt(ours, ndmin=2)
     b = np.loadtxt(ref, ndmin=2)
+    if lines:
+        a, b = a[:lines], b[:lines]
     problems = []
     if a.shape != b.shape:
         return [f"{ref.name}: shape {a.shape}, LMGC90's {b.shape}"], []
@@ -131,6 +138,7 @@ def main(argv=None):
     p.add_argument("ref", type=Path)
     p.add_argument("--files", nargs="*", help="compare only these names (default: every LMGC90 file Fracas writes)")
     p.add_argument("--rtol", type=float, default=1e-7)
+    p.add_argument("--lines", type=int, help="compare the first N lines only (a run shorter than LMGC90's)")
     a = p.parse_args(argv)
     names = a.files or sorted(f.name for f in a.ref.glob("*.DAT") if kind_of(f.name))
     if not names:
@@ -141,7 +149,7 @@ def main(argv=None):
         if not (a.ours / name).is_file():
             problems.append(f"{name}: missing in {a.ours}")
             continue
-        pr, rep = compare_file(a.ours / name, a.ref / name, a.rtol)
+        pr, rep = compare_file(a.ours / name, a.ref / name, a.rtol, a.lines)
         problems += pr
         for fname, col, worst in rep:
             print(f"{fname} column {col}: worst deviation {worst:.3f} x tolerance")
