@@ -31,6 +31,7 @@ module fracas_cracks
     real(wp), allocatable :: pt_beta(:)         !< (npts) damage, 1 sound .. 0 broken
     logical, allocatable :: pt_glued(:), pt_seen(:)
     integer, allocatable :: pt_partner(:)       !< (npts) meshed body glued to the point (0: none)
+    integer, allocatable :: pt_an(:)            !< (npts) antagonist contactor of the glued contact
     integer, allocatable :: edge_first(:)       !< (nedges+1) points edge_pts(edge_first(e) ..) of edge e
     integer, allocatable :: edge_pts(:)
     integer, allocatable :: edge_nodes(:, :)    !< (2,nedges) mesh nodes of the candidate edge
@@ -72,8 +73,9 @@ contains
     end do
     order = sort_keys(key)
     allocate (cr%pt_edge(cr%npts), cr%pt_beta(cr%npts), cr%pt_glued(cr%npts), cr%pt_seen(cr%npts), &
-              cr%pt_partner(cr%npts))
+              cr%pt_partner(cr%npts), cr%pt_an(cr%npts))
     cr%pt_partner = 0
+    cr%pt_an = 0
     cr%pt_beta = 1.0_wp
     cr%pt_glued = .false.
     cr%pt_seen = .false.
@@ -132,9 +134,12 @@ contains
   !> After a step: the interface points' damage from the cohesive contacts.
   !> Points glued at the start are those with a cohesive contact of beta > 0
   !> after the run's first step (first); a glued point without a contact has
-  !> separated beyond the alert distance: broken. step numbers the step. The
-  !> energy a glued point released in the step, L (e(beta_old) - e(beta)) at
-  !> the end-of-step jumps (the solver's damage_dissipated), goes to its family.
+  !> separated beyond the alert distance: broken. Only the contact that glued
+  !> a point (same antagonist contactor) speaks for it: a point may later see
+  !> another antagonist within the alert distance (a new contact, without
+  !> cohesion), which says nothing about its interface. step numbers the step.
+  !> The energy a glued point released in the step, L (e(beta_old) - e(beta))
+  !> at the end-of-step jumps (the solver's damage_dissipated), goes to its family.
   subroutine cracks_update(cr, c, laws, first, step)
     type(cracks_t), intent(inout) :: cr
     type(contacts_t), intent(in) :: c
@@ -151,13 +156,15 @@ contains
       if (laws(c%law(k))%kind /= law_czm) cycle
       p = cr%tactor_pt(c%cd(k))
       if (p == 0) cycle
-      present_now(p) = .true.
       if (.not. cr%pt_seen(p)) then
+        cr%pt_seen(p) = .true.
         cr%pt_glued(p) = first .and. c%internals(4, k) > 0.0_wp
-        if (cr%pt_glued(p) .and. c%anm(k) == bm_mesh) cr%pt_partner(p) = c%anb(k)
+        if (.not. cr%pt_glued(p)) cycle
+        cr%pt_an(p) = c%an(k)
+        if (c%anm(k) == bm_mesh) cr%pt_partner(p) = c%anb(k)
       end if
-      cr%pt_seen(p) = .true.
-      if (.not. cr%pt_glued(p)) cycle
+      if (.not. cr%pt_glued(p) .or. c%an(k) /= cr%pt_an(p)) cycle
+      present_now(p) = .true.
       if (c%internals(4, k) < cr%pt_beta(p)) then
         ut = c%internals(2, k); un = c%internals(3, k)
         associate (z => laws(c%law(k))%czm, f => cr%edge_family(cr%pt_edge(p)))
