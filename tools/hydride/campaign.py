@@ -22,7 +22,6 @@ import itertools
 import json
 import math
 import os
-import resource
 import shutil
 import subprocess
 import sys
@@ -64,41 +63,55 @@ def find_fracas(given=None):
     raise SystemExit("fracas not found: build it (cmake --build --preset release) or pass --fracas")
 
 
-def run_case(root, seed, bonding, h, a, fracas):
-    """Generate, run and summarise one case; returns its summary (dict)."""
-    import hydride_post as post
+def case_settings(h, a):
+    dt = a.courant * h / p_wave_speed()
+    return dict(dt=dt, steps=int(round(a.final_time / dt)), every=max(1, int(round(a.output_time / dt))),
+                vtk=max(1, int(round(a.vtk_time / dt))))
+
+
+def generate_case(root, seed, bonding, h, a):
+    """The deck of one case (gmsh: main thread only). None when already summarised."""
     d = Path(root) / case_name(seed, bonding, h)
-    summary_path = d / "summary.json"
-    if summary_path.is_file() and not a.force:
-        return json.loads(summary_path.read_text())
+    if (d / "summary.json").is_file() and not a.force:
+        return None
     if d.exists():
         shutil.rmtree(d)
-    dt = a.courant * h / p_wave_speed()
-    steps = int(round(a.final_time / dt))
-    every = max(1, int(round(a.output_time / dt)))
-    vtk = max(1, int(round(a.vtk_time / dt)))
+    c = case_settings(h, a)
     geo = plate.Geometry(width=a.width, height=a.width)
-    plate.generate(d, seed, h, bonding, geo, plate.Loading(velocity=a.velocity), time_step=dt, steps=steps,
-                   output_every=every, vtk_every=vtk)
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    plate.generate(d, seed, h, bonding, geo, plate.Loading(velocity=a.velocity), time_step=c["dt"],
+                   steps=c["steps"], output_every=c["every"], vtk_every=c["vtk"])
+    return d
+
+
+def run_fracas(d, fracas):
+    """Run fracas on case folder d; returns (wall seconds, processor seconds of the run)."""
     t0 = time.time()
     with open(d / "run.log", "w") as log:
-        r = subprocess.run([fracas, "-q", "--overwrite", str(d)], stdout=log, stderr=subprocess.STDOUT)
+        p = subprocess.Popen([fracas, "-q", "--overwrite", str(d)], stdout=log, stderr=subprocess.STDOUT)
+        _, status, usage = os.wait4(p.pid, 0)
     wall = time.time() - t0
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if r.returncode != 0:
-        raise RuntimeError(f"{d}: fracas failed (exit {r.returncode}), see {d / 'run.log'}")
+    code = os.waitstatus_to_exitcode(status)
+    if code != 0:
+        raise RuntimeError(f"{d}: fracas failed (exit {code}), see {d / 'run.log'}")
+    (d / "timing.json").write_text(json.dumps(dict(wall_seconds=wall, cpu_seconds_process=usage.ru_utime + usage.ru_stime,
+                                                   load_average=os.getloadavg()[0])) + "\n")
+    return wall, usage.ru_utime + usage.ru_stime
+
+
+def summarize_case(d, a):
+    """summary.json (hydride_post.summary, the timing and the run settings) and crack.png."""
+    import hydride_post as post
     s = post.summary(d)
-    # processor time of this child (exact when runs are sequential in this process)
-    s.update(wall_seconds=wall, cpu_seconds_process=(after.ru_utime - before.ru_utime),
-             dt=dt, final_time=a.final_time, velocity=a.velocity, load_average=os.getloadavg()[0])
-    summary_path.write_text(json.dumps(s, indent=1) + "\n")
+    s.update(json.loads((d / "timing.json").read_text()))
+    c = case_settings(s["h"], a)
+    s.update(dt=c["dt"], final_time=a.final_time, velocity=a.velocity)
+    (d / "summary.json").write_text(json.dumps(s, indent=1) + "\n")
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         fig, ax = plt.subplots(figsize=(5, 5))
-        post.draw(post.Run(d), ax, title=f"{bonding} bonding, seed {seed}, h {h * 1e6:.2g} µm")
+        post.draw(post.Run(d), ax, title=f"{s['bonding']} bonding, seed {s['seed']}, h {s['h'] * 1e6:.2g} µm")
         fig.tight_layout()
         fig.savefig(d / "crack.png", dpi=120)
         plt.close(fig)
@@ -137,20 +150,26 @@ def main(argv=None):
             raise SystemExit(f"--index: 0 to {len(cases) - 1}")
         cases = [cases[a.index]]
 
-    def one(c):
-        s = run_case(a.root, *c, a, fracas)
-        cr = s["crack"]
-        print(f"{case_name(*c)}: {'across' if cr['separated'] else 'not across'}, shares "
-              + " ".join(f"{k} {100 * v:.0f}%" for k, v in cr["shares"].items())
-              + f", {s['wall_seconds']:.0f} s wall, {s['cpu_seconds']:.0f} s in steps", flush=True)
-        return s
+    # decks first (gmsh in the main thread), then the runs (jobs at a time), then the summaries
+    todo = [(c, generate_case(a.root, *c, a)) for c in cases]
+    todo = [(c, d) for c, d in todo if d is not None]
+
+    def run(item):
+        c, d = item
+        wall, cpu = run_fracas(d, fracas)
+        print(f"{case_name(*c)}: ran in {wall:.0f} s wall, {cpu:.0f} s processor", flush=True)
 
     if a.jobs > 1:
         with ThreadPoolExecutor(a.jobs) as pool:
-            list(pool.map(one, cases))
+            list(pool.map(run, todo))
     else:
-        for c in cases:
-            one(c)
+        for item in todo:
+            run(item)
+    for c, d in todo:
+        s = summarize_case(d, a)
+        cr = s["crack"]
+        print(f"{case_name(*c)}: {'across' if cr['separated'] else 'ligament %.1f µm left' % (1e6 * cr['ligament'])}"
+              ", shares " + " ".join(f"{k} {100 * v:.0f}%" for k, v in cr["shares"].items()), flush=True)
     return 0
 
 

@@ -48,10 +48,10 @@ class Geometry:
     are added until their area reaches ``area_fraction`` of the plate (the last one
     shortened to hit it), each at least ``clearance`` away from the others, the plate
     edges and the notch."""
-    width: float = 40e-6
-    height: float = 40e-6
+    width: float = 32e-6
+    height: float = 32e-6
     thickness: tuple = (2.0e-6, 3.0e-6)
-    aspect: tuple = (6.0, 10.0)
+    aspect: tuple = (5.0, 8.0)
     area_fraction: float = 0.20
     clearance: float = 1.0e-6
     notch: float = 4.0e-6            # notch length (0: none), across the edge it starts from

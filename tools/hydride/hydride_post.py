@@ -12,12 +12,14 @@ Definitions (doc/hydrided_zircaloy.md §4):
 
 * broken interface: an interface edge whose glued points all have beta = 0 (fracas'
   cracks/edge_broken_step > 0);
-* macro-crack: the shortest path of broken edges (reference lengths) from the edge the
-  notch cuts (or the notch itself) to the opposite edge: a path across the plate is
-  exactly what separates it in two. If none crosses yet, the shortest path to the
-  broken vertex farthest across (the macro-crack so far; ``separated`` False);
-* shares: the macro-crack's length through hydrides (HY_HY edges), along
-  matrix/hydride interfaces (HY_MA) and through the matrix (MA_MA), over its length;
+* macro-crack: the path of interface edges from the edge the notch cuts (or the
+  notch itself) to the opposite edge that leaves the least length unbroken, and then
+  is the shortest (reference lengths). A fully broken path across is exactly what
+  separates the plate in two (``separated``); otherwise the unbroken length left on
+  it is the ``ligament`` still bridging the crack;
+* shares: the broken length of the macro-crack through hydrides (HY_HY edges), along
+  matrix/hydride interfaces (HY_MA) and through the matrix (MA_MA), over its broken
+  length;
 * microcracks: broken edges off the macro-crack (count, length per family, and the
   number of connected clusters they form).
 """
@@ -40,11 +42,13 @@ PHASE_COLOR = {"matrix": "#dcdcdc", "hydride": "#9ec5e8"}
 
 class Run:
     """One run's mesh, interfaces and final state (or snapshot ``snapshot``, 1-based,
-    negative from the end)."""
+    negative from the end). case_dir holds OUTBOX/ and POSTPRO/; deck_dir (default
+    case_dir) the generator's hydrides.json (the run may be written elsewhere with
+    fracas --output)."""
 
-    def __init__(self, case_dir, snapshot=-1):
+    def __init__(self, case_dir, snapshot=-1, deck_dir=None):
         self.case_dir = Path(case_dir)
-        self.info = json.loads((self.case_dir / "hydrides.json").read_text())
+        self.info = json.loads((Path(deck_dir or case_dir) / "hydrides.json").read_text())
         with h5py.File(self.case_dir / "OUTBOX" / "fracas.h5", "r") as f:
             self.complete = int(f.attrs.get("complete", 0))
             m = f["mesh"]
@@ -95,9 +99,20 @@ def _vertices(points, tol):
     return index.reshape(-1)
 
 
+#: weight of an unbroken interface edge on the macro-crack path, per unit length (a
+#: broken edge weighs 1): the path takes the least unbroken length, then the shortest
+LIGAMENT_WEIGHT = 1000.0
+
+
 def macro_crack(run):
-    """The macro-crack (module docstring): dict with the path's edges (indices into the
-    interface edges), its length per family, the shares, separated, microcracks."""
+    """The macro-crack (module docstring): the path of interface edges across the plate,
+    from the edge the notch cuts (or the notch) to the opposite edge, that leaves the
+    least length unbroken, then the shortest. Edges weigh their length times 1 when
+    broken, 1 + LIGAMENT_WEIGHT/2 when some of their points are broken (a hinge), 1 +
+    LIGAMENT_WEIGHT when intact. Returns a dict: path edges (indices into the interface
+    edges), length per family of its broken part and shares, the unbroken ligament left
+    on it (separated when none), how far across the broken part reaches from the start
+    (reach, 0..1), the microcracks (broken edges off the path, their clusters)."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components, dijkstra
 
@@ -106,24 +121,17 @@ def macro_crack(run):
     across = 1 if direction == "x" else 0          # the crack crosses the plate along this axis
     extent = geo["height"] if direction == "x" else geo["width"]
     h = run.info["h_mean"]
-    broken = np.nonzero(run.broken())[0]
-    out = dict(step=run.step, time=run.time, broken_edges=int(len(broken)),
-               broken_length=float(run.edge_length[broken].sum()))
-    fam_len = {f: 0.0 for f in FAMILY_LABEL}
-    if len(broken) == 0:
-        out.update(separated=False, path_edges=[], path_length=0.0, length_per_family=fam_len,
-                   shares={f: 0.0 for f in FAMILY_LABEL}, reach=0.0, microcracks=0,
-                   microcrack_edges=0, microcrack_length_per_family=dict(fam_len))
-        return out
-    ends = run.ref[run.edge_nodes[broken]].reshape(-1, 2)      # 2 per broken edge
+    broken = run.broken()
+    hinge = (run.edge_beta == 0.0) & ~broken
+    ends = run.ref[run.edge_nodes].reshape(-1, 2)
     vert = _vertices(ends, 1e-3 * h).reshape(-1, 2)
     nv = int(vert.max()) + 1
     vpos = np.zeros((nv, 2))
     vpos[vert.reshape(-1)] = ends
-    w = run.edge_length[broken]
+    length = run.edge_length
+    w = length * np.where(broken, 1.0, np.where(hinge, 1.0 + 0.5 * LIGAMENT_WEIGHT, 1.0 + LIGAMENT_WEIGHT))
     graph = coo_matrix((np.r_[w, w], (np.r_[vert[:, 0], vert[:, 1]], np.r_[vert[:, 1], vert[:, 0]])),
                        shape=(nv, nv)).tocsr()
-    # sources: the edge the notch cuts and the notch line; targets: the opposite edge
     eps = 1e-3 * h
     a = vpos[:, across]
     sources = a < eps
@@ -132,52 +140,48 @@ def macro_crack(run):
         other = 1 - across
         mid = 0.5 * (geo["width"] if other == 0 else geo["height"])
         sources |= (np.abs(vpos[:, other] - mid) < eps) & (a <= notch + eps)
-    if not sources.any():
-        sources = a <= a.min() + eps
-    dist, pred, _ = dijkstra(graph, indices=np.nonzero(sources)[0], min_only=True,
-                             return_predecessors=True)
-    reach = np.isfinite(dist)
-    targets = reach & (a > extent - eps)
-    separated = bool(targets.any())
-    if separated:
-        end = int(np.argmin(np.where(targets, dist, np.inf)))
-    else:
-        far = np.where(reach, a, -np.inf)
-        cand = np.nonzero(far >= far.max() - eps)[0]
-        end = int(cand[np.argmin(dist[cand])])
-    # walk back: vertex pairs of the path -> broken edges
+    targets = a > extent - eps
+    dist, pred, _ = dijkstra(graph, indices=np.nonzero(sources)[0], min_only=True, return_predecessors=True)
+    end = int(np.argmin(np.where(targets, dist, np.inf)))
     pair_edge = {}
     for k, (p, q) in enumerate(vert):
         key = (min(p, q), max(p, q))
         if key not in pair_edge or w[k] < w[pair_edge[key]]:
             pair_edge[key] = k
-    on_path = np.zeros(len(broken), bool)
+    path = []
     v = end
     while pred[v] >= 0:
         u = pred[v]
-        on_path[pair_edge[(min(u, v), max(u, v))]] = True
+        path.append(pair_edge[(min(u, v), max(u, v))])
         v = u
-    path = broken[on_path]
-    for f in FAMILY_LABEL:
-        fam_len[f] = float(run.edge_length[path][run.edge_family[path] == f].sum())
+    path = np.array(path[::-1], dtype=int)           # from the start to the far edge
+    on_broken = path[broken[path]]
+    fam_len = {f: float(length[on_broken][run.edge_family[on_broken] == f].sum()) for f in FAMILY_LABEL}
     total = sum(fam_len.values())
-    # microcracks: broken edges off the path, and the clusters they form
-    off = ~on_path
-    micro_len = {f: float(w[off & (run.edge_family[broken] == f)].sum()) for f in FAMILY_LABEL}
+    ligament = float(length[path[~broken[path]]].sum())
+    # reach: how far across the broken part runs from the start without a gap
+    reach = 0.0
+    if len(path):
+        first_gap = np.nonzero(~broken[path])[0]
+        upto = path[:first_gap[0]] if len(first_gap) else path
+        if len(upto):
+            reach = float(vpos[vert[upto]].reshape(-1, 2)[:, across].max() / extent)
+    off = broken.copy()
+    off[path] = False
+    micro_len = {f: float(length[off & (run.edge_family == f)].sum()) for f in FAMILY_LABEL}
     clusters = 0
     if off.any():
-        vo = vert[off]
-        used, inv = np.unique(vo.reshape(-1), return_inverse=True)
+        used, inv = np.unique(vert[off].reshape(-1), return_inverse=True)
         inv = inv.reshape(-1, 2)
         g = coo_matrix((np.ones(len(inv)), (inv[:, 0], inv[:, 1])), shape=(len(used), len(used)))
         clusters = int(connected_components(g, directed=False)[0])
-    out.update(separated=separated, path_edges=path.tolist(), path_length=total,
-               length_per_family=fam_len,
-               shares={f: (fam_len[f] / total if total > 0 else 0.0) for f in FAMILY_LABEL},
-               reach=float(vpos[end, across] / extent), tortuosity=total / extent,
-               microcracks=clusters, microcrack_edges=int(off.sum()),
-               microcrack_length_per_family=micro_len)
-    return out
+    return dict(step=run.step, time=run.time, broken_edges=int(broken.sum()),
+                broken_length=float(length[broken].sum()), separated=ligament == 0.0,
+                path_edges=path.tolist(), path_length=total, ligament=ligament,
+                length_per_family=fam_len,
+                shares={f: (fam_len[f] / total if total > 0 else 0.0) for f in FAMILY_LABEL},
+                reach=reach if ligament > 0 else 1.0, tortuosity=(total + ligament) / extent,
+                microcracks=clusters, microcrack_edges=int(off.sum()), microcrack_length_per_family=micro_len)
 
 
 # --------------------------------------------------------------------------------------
@@ -220,8 +224,8 @@ def energies(run):
     return out
 
 
-def summary(case_dir):
-    run = Run(case_dir)
+def summary(case_dir, deck_dir=None):
+    run = Run(case_dir, deck_dir=deck_dir)
     crack = macro_crack(run)
     fd = force_displacement(run)
     en = energies(run)
@@ -243,7 +247,8 @@ def summary(case_dir):
 
 def draw(run, ax, crack=None, magnify=1.0, legend=True, title=None):
     """The final microstructure (deformed, displacements x magnify): matrix and
-    hydride elements, broken interfaces coloured by family, the macro-crack thick."""
+    hydride elements, broken interfaces coloured by family (dotted: partly broken),
+    the macro-crack thick."""
     from matplotlib.collections import LineCollection, PolyCollection
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
@@ -254,14 +259,16 @@ def draw(run, ax, crack=None, magnify=1.0, legend=True, title=None):
     colors = [PHASE_COLOR[p] for p in run.phase]
     ax.add_collection(PolyCollection(tri, facecolors=colors, edgecolors=colors, linewidths=0.2))
     broken = np.nonzero(run.broken())[0]
+    hinge = np.nonzero((run.edge_beta == 0.0) & ~run.broken())[0]
     path = set(crack.get("path_edges", []))
-    for on_path, lw in ((False, 0.7), (True, 2.2)):
-        sel = [e for e in broken if (e in path) == on_path]
+    for edges, on_path, lw, style in ((broken, False, 0.7, "solid"), (broken, True, 2.2, "solid"),
+                                      (hinge, False, 0.7, "dotted"), (hinge, True, 2.2, "dotted")):
+        sel = [e for e in edges if (e in path) == on_path]
         if not sel:
             continue
         seg = xy[run.edge_nodes[sel]]
         ax.add_collection(LineCollection(seg, colors=[FAMILY_COLOR[run.edge_family[e]] for e in sel],
-                                         linewidths=lw))
+                                         linewidths=lw, linestyles=style))
     g = run.geometry
     ax.set_xlim(-0.05 * g["width"] * um, 1.05 * g["width"] * um)
     ax.set_ylim(-0.05 * g["height"] * um, 1.05 * g["height"] * um)
@@ -286,7 +293,7 @@ def main(argv=None):
     s = summary(a.case_dir)
     c = s["crack"]
     print(f"{a.case_dir}: {s['bonding']} seed {s['seed']}, {s['elements']} elements, step {s['steps']}; "
-          f"macro-crack {'across' if c['separated'] else 'so far (%.0f %% across)' % (100 * c['reach'])} "
+          f"macro-crack {'across' if c['separated'] else '(ligament %.1f µm left)' % (1e6 * c['ligament'])} "
           f"{c['path_length'] * 1e6:.1f} µm: " + ", ".join(
               f"{100 * c['shares'][f]:.0f} % {FAMILY_LABEL[f]}" for f in FAMILY_LABEL)
           + f"; {c['microcrack_edges']} broken edges off it in {c['microcracks']} microcracks; "
