@@ -1,10 +1,9 @@
 !> Kernel micro-benchmark: NLGS contact updates per second on one core, exchange
 !> local–global mode, on lattices built in memory (reference/nscd_validation.md §4.2,
 !> Appendix B):
-!>   2D: triangular lattice of disks under gravity, bottom row fixed; the reference
-!>       kernel gs_sweep_2d (fracas' sweep until 3058b7d), the scene kernel
-!>       gs_sweep_2d_packed (fracas' sweep since: same iterates, packed records; checked
-!>       bit-identical to gs_sweep_2d here), and a proposed variant (gs2d_fast below);
+!>   2D: triangular lattice of disks under gravity, bottom row fixed; the solver's own
+!>       kernel gs_sweep_2d_packed (the scene NLGS calls it; no copy here), reported as
+!>       scene_packed;
 !>   3D: simple-cubic lattice of spheres under gravity, bottom layer fixed; a 3D
 !>       exchange sweep with the exact local solver coulomb_3d.
 !> Contacts are in lattice order ("ordered": neighbours close in memory) or randomly
@@ -17,60 +16,9 @@ module kernel_bench_kernels
   use fracas_local_solver, only: coulomb_3d
   implicit none
   private
-  public :: gs2d_fast, gs3d
+  public :: gs3d
 
 contains
-
-  !> The proposed 2D exchange sweep: the same arithmetic as gs_sweep_2d, but
-  !> (1) body state packed as one 6-double record b = (vx, vy, w, 1/m, 1/m, 1/I),
-  !> so a body costs one cache line instead of two; (2) the per-contact data in one
-  !> 16-double record c = (n1, n2, l1, l2, l3, l4, wtt, wtn, wnt, wnn, wi(1:6));
-  !> (3) the contacts are stored in sweep order (no order/active/cohesive
-  !> indirection: the caller packs the active, non-cohesive ones), statuses are
-  !> not written. r(2, n) separate. (4) the exact local solver (coulomb_2d_inv's
-  !> four cases) inlined and selected with merge (no data-dependent branches).
-  subroutine gs2d_fast(n, body, c, shift, mu, r, b)
-    integer, intent(in) :: n
-    integer, intent(in) :: body(2, n)
-    real(wp), intent(in) :: c(16, n), shift(2, n), mu(n)
-    real(wp), intent(inout) :: r(2, n), b(6, *)
-    integer :: k, a, o
-    real(wp) :: n1, n2, dvx, dvy, ut, un, rt0, rn0, rt, rn, uft, ufn, drt, drn, px, py, m, pt, pn, rnf, rnb
-    logical :: fw, bw
-    do k = 1, n
-      a = body(1, k); o = body(2, k)
-      n1 = c(1, k); n2 = c(2, k)
-      dvx = b(1, a) - b(1, o)
-      dvy = b(2, a) - b(2, o)
-      ut = dvx * n2 - dvy * n1 + b(3, a) * c(3, k) - b(3, o) * c(5, k)
-      un = dvx * n1 + dvy * n2 + b(3, a) * c(4, k) - b(3, o) * c(6, k)
-      rt0 = r(1, k); rn0 = r(2, k)
-      uft = ut - (c(7, k) * rt0 + c(8, k) * rn0) + shift(1, k)
-      ufn = un - (c(9, k) * rt0 + c(10, k) * rn0) + shift(2, k)
-      ! coulomb_2d_inv inlined, the four cases selected without branches
-      m = mu(k)
-      pt = -(c(11, k) * uft + c(12, k) * ufn)
-      pn = -(c(13, k) * uft + c(14, k) * ufn)
-      rnf = -ufn * c(15, k)
-      rnb = -ufn * c(16, k)
-      fw = pt + m * pn < 0.0_wp
-      bw = pt - m * pn > 0.0_wp
-      rn = merge(rnf, merge(rnb, pn, bw), fw)
-      rt = merge(-m * rnf, merge(m * rnb, pt, bw), fw)
-      rn = merge(0.0_wp, rn, ufn >= 0.0_wp)
-      rt = merge(0.0_wp, rt, ufn >= 0.0_wp)
-      r(1, k) = rt; r(2, k) = rn
-      drt = rt - rt0; drn = rn - rn0
-      px = drt * n2 + drn * n1
-      py = -drt * n1 + drn * n2
-      b(1, a) = b(1, a) + b(4, a) * px
-      b(2, a) = b(2, a) + b(5, a) * py
-      b(3, a) = b(3, a) + b(6, a) * (drt * c(3, k) + drn * c(4, k))
-      b(1, o) = b(1, o) - b(4, o) * px
-      b(2, o) = b(2, o) - b(5, o) * py
-      b(3, o) = b(3, o) - b(6, o) * (drt * c(5, k) + drn * c(6, k))
-    end do
-  end subroutine gs2d_fast
 
   !> One 3D exchange sweep over sphere contacts. b(12, nb) = (v(3), w(3), 1/m,
   !> 1/I (isotropic), pad); frame(9, k) = (n, t1, t2) columns; lever(6, k) =
@@ -124,9 +72,9 @@ program kernel_bench
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal
   use fracas_random, only: rng_t, rng_seed, rng_permute
-  use fracas_local_solver, only: gs_sweep_2d, gs_sweep_2d_packed, pk_size, inverse_block, inverse_block_3d
+  use fracas_local_solver, only: gs_sweep_2d_packed, pk_size, inverse_block, inverse_block_3d
   use fracas_ids, only: st_stick, st_slifw, st_slibw, st_noctc
-  use kernel_bench_kernels, only: gs2d_fast, gs3d
+  use kernel_bench_kernels, only: gs3d
   implicit none
   character(len=256) :: arg, csv
   integer :: i, u, n2d(4), n3d(4), nsz
@@ -254,13 +202,11 @@ contains
   subroutine bench_2d(target_contacts)
     integer, intent(in) :: target_contacts
     integer :: nx, ny, nb, nc, ix, iy, k, a, o, j, nsw, pass, kk
-    integer, allocatable :: body(:, :), order(:), status(:), bod(:, :)
-    logical, allocatable :: active(:), cohesive(:)
-    real(wp), allocatable :: x(:, :), v(:, :), im(:, :), geo(:, :), w(:, :), wi(:, :), shift(:, :), mu(:), r(:, :)
-    real(wp), allocatable :: cc(:, :), bb(:, :), rr(:, :), sh(:, :), mm(:), coh(:, :), pcr(:, :), r1(:, :), v1(:, :)
+    integer, allocatable :: body(:, :), order(:), bod(:, :)
+    real(wp), allocatable :: x(:, :), v(:, :), im(:, :), geo(:, :), w(:, :), wi(:, :), shift(:, :), mu(:)
+    real(wp), allocatable :: bb(:, :), rr(:, :), coh(:, :), pcr(:, :)
     integer, allocatable :: picoh(:), pst(:)
-    logical :: same
-    real(wp) :: rad, h, g, n1, n2, ht(3), hn(3), gt(3), gn(3), t0, sums(6), maxes(2), mb, best
+    real(wp) :: rad, h, g, n1, n2, ht(3), hn(3), gt(3), gn(3), t0, sums(6), maxes(2), best
     integer :: rep
     type(rng_t) :: rng
     logical :: shuffled
@@ -299,7 +245,7 @@ contains
         end if
       end do
     end do
-    allocate (geo(6, nc), w(4, nc), wi(6, nc), shift(2, nc), mu(nc), r(2, nc), status(nc), active(nc), order(nc))
+    allocate (geo(6, nc), w(4, nc), wi(6, nc), shift(2, nc), mu(nc), order(nc))
     do k = 1, nc
       a = body(1, k); o = body(2, k)
       n1 = (x(1, a) - x(1, o)) / (2.0_wp * rad); n2 = (x(2, a) - x(2, o)) / (2.0_wp * rad)
@@ -314,13 +260,9 @@ contains
       wi(:, k) = inverse_block(w(1, k), w(2, k), w(3, k), w(4, k), mu(k))
       shift(:, k) = 0.0_wp
     end do
-    active = .true.
-    allocate (cohesive(nc), coh(12, 1))
-    cohesive = .false.
+    allocate (coh(12, 1))
     coh = 0.0_wp
-    mb = real(nc, wp) * (8 + 8 * (6 + 4 + 6 + 2 + 1 + 2) + 4 + 4) / 1.0e6_wp + real(nb, wp) * 48 / 1.0e6_wp
-    ! packed copies for the proposed kernel
-    allocate (cc(16, nc), bb(6, nb), rr(2, nc), sh(2, nc), mm(nc), bod(2, nc), pcr(pk_size, nc), picoh(nc), pst(nc))
+    allocate (bb(6, nb), rr(2, nc), bod(2, nc), pcr(pk_size, nc), picoh(nc), pst(nc))
     picoh = 0
     call rng_seed(rng, 42)
     do pass = 1, 3
@@ -331,53 +273,19 @@ contains
       oname = trim(merge('ordered ', 'coloured', pass == 1))
       if (shuffled) oname = 'shuffled'
       nsw = sweeps_for(nc, shuffled)
-      ! scene kernel
-      r = 0.0_wp; status = 0
-      call reset_v2(v, im, g * h)
-      call gs_sweep_2d(order, active, cohesive, coh, body, geo, w, wi, shift, mu, r, status, v, im, 1.0_wp, &
-                       .false., sums, maxes)
-      best = huge(1.0_wp)
-      do rep = 1, nrep
-        t0 = now()
-        do j = 1, nsw
-          call gs_sweep_2d(order, active, cohesive, coh, body, geo, w, wi, shift, mu, r, status, v, im, 1.0_wp, &
-                           .false., sums, maxes)
-        end do
-        best = min(best, now() - t0)
-      end do
-      call report(2, 'gs_sweep_2d', oname, nb, nc, nsw, best, mb)
-      if (pass == 1) write (output_unit, '(a,3(i0,a),es10.3)') '#  statuses after the sweeps: ', &
-        count(status == st_stick), ' stick, ', count(status == st_slifw .or. status == st_slibw), ' slide, ', &
-        count(status == st_noctc), ' open; max |r| ', maxval(abs(r))
-      ! proposed kernel on the same order (contacts packed in sweep order)
+      ! the solver's kernel on its packed records, contacts in sweep order
       do kk = 1, nc
         k = order(kk)
         bod(:, kk) = body(:, k)
-        cc(:, kk) = [geo(:, k), w(:, k), wi(:, k)]
-        sh(:, kk) = shift(:, k); mm(kk) = mu(k)
         pcr(:, kk) = [geo(:, k), w(:, k), wi(:, k), shift(:, k), mu(k), 0.0_wp]
       end do
-      ! the scene kernel on packed records: first three sweeps (the last a check
-      ! sweep) against gs_sweep_2d from the same start, bit for bit
-      r = 0.0_wp; status = 0
-      call reset_v2(v, im, g * h)
-      do j = 1, 3
-        call gs_sweep_2d(order, active, cohesive, coh, body, geo, w, wi, shift, mu, r, status, v, im, 1.0_wp, &
-                         j == 3, sums, maxes)
-      end do
-      r1 = r; v1 = v
       rr = 0.0_wp
       call reset_v2(v, im, g * h)
       bb(1:3, :) = v; bb(4:6, :) = im
-      do j = 1, 3
-        call gs_sweep_2d_packed(nc, bod, pcr, picoh, .false., coh, rr, pst, bb, 1.0_wp, j == 3, sums, maxes)
-      end do
-      same = all(bb(1:3, :) == v1)
-      do kk = 1, nc
-        same = same .and. rr(1, kk) == r1(1, order(kk)) .and. rr(2, kk) == r1(2, order(kk)) .and. &
-               pst(kk) == status(order(kk))
-      end do
-      if (.not. same) call fatal('gs_sweep_2d_packed differs from gs_sweep_2d')
+      call gs_sweep_2d_packed(nc, bod, pcr, picoh, .false., coh, rr, pst, bb, 1.0_wp, .true., sums, maxes)
+      if (pass == 1) write (output_unit, '(a,3(i0,a),es10.3)') '#  statuses after a check sweep: ', &
+        count(pst == st_stick), ' stick, ', count(pst == st_slifw .or. pst == st_slibw), ' slide, ', &
+        count(pst == st_noctc), ' open; max |r| ', maxval(abs(rr))
       best = huge(1.0_wp)
       do rep = 1, nrep
         t0 = now()
@@ -388,20 +296,6 @@ contains
       end do
       call report(2, 'scene_packed', oname, nb, nc, nsw, best, &
                   real(nc, wp) * (4 + 8 + 8 * (pk_size + 2)) / 1.0e6_wp + real(nb, wp) * 48 / 1.0e6_wp)
-      rr = 0.0_wp
-      call reset_v2(v, im, g * h)
-      bb(1:3, :) = v; bb(4:6, :) = im
-      call gs2d_fast(nc, bod, cc, sh, mm, rr, bb)
-      best = huge(1.0_wp)
-      do rep = 1, nrep
-        t0 = now()
-        do j = 1, nsw
-          call gs2d_fast(nc, bod, cc, sh, mm, rr, bb)
-        end do
-        best = min(best, now() - t0)
-      end do
-      call report(2, 'packed_2d', oname, nb, nc, nsw, best, &
-                  real(nc, wp) * (8 + 8 * (16 + 2 + 2 + 1)) / 1.0e6_wp + real(nb, wp) * 48 / 1.0e6_wp)
     end do
 
   end subroutine bench_2d

@@ -4,23 +4,30 @@ program fracas
   use, intrinsic :: iso_fortran_env, only: output_unit, int64
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged
+  use fracas_strings, only: itoa, rtoa
+  use fracas_datbox_text, only: parse_int
   use fracas_deck, only: deck_t
   use fracas_read_deck, only: read_deck
+  use fracas_mailx, only: mailx_solver_summary
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
   use fracas_output, only: output_t, output_open, output_vtk, output_outbox, output_snapshot, &
-                           output_series, output_close
+                           output_series, output_close, output_summary
   use fracas_version, only: version_string
+  use fracas_state_guard, only: scene_check_start, scene_fault
+  use fracas_restart, only: restart_save, restart_load
   use fracas_command_line, only: argument_value
   implicit none
 
-  character(len=:), allocatable :: case_dir, command_file, out_dir, arg
+  character(len=:), allocatable :: case_dir, command_file, out_dir, arg, restart_file, fault
   character(len=1024), allocatable :: settings(:)
   logical :: check_only, quiet, overwrite
   type(deck_t) :: deck
   type(scene_t) :: sc
   type(output_t) :: out
   type(step_report_t) :: rep
-  integer :: i, nargs, nsteps, istep, every, total_sweeps, unconverged, late, hdf5_every, first_unconverged
+  integer :: i, nargs, nsteps, istep, first_step, every, unconverged, late, hdf5_every, first_unconverged
+  integer :: restart_step, vtk_frames, outbox_writes
+  integer(int64) :: total_sweeps
   real(wp) :: late_max
   integer(int64) :: t0, t1, rate
   real(wp) :: elapsed, worst_residual
@@ -31,7 +38,7 @@ contains
 
   subroutine main()
     check_only = .false.; quiet = .false.; overwrite = .false.
-    command_file = ''; out_dir = ''; case_dir = ''
+    command_file = ''; out_dir = ''; case_dir = ''; restart_file = ''; restart_step = -1
     allocate (settings(0))
     nargs = command_argument_count()
     i = 0
@@ -51,6 +58,17 @@ contains
       case ('--output')
         i = i + 1
         out_dir = argument_value(i, arg)
+      case ('--restart')
+        i = i + 1
+        restart_file = argument_value(i, arg)
+      case ('--restart-step')
+        i = i + 1
+        block
+          character(len=:), allocatable :: msg
+          if (.not. parse_int(argument_value(i, arg), restart_step, msg)) &
+            call fatal('--restart-step needs a step number, '//msg)
+          if (restart_step < 0) call fatal('--restart-step needs a step number >= 0')
+        end block
       case ('--set')
         i = i + 1
         settings = [character(len=1024) :: settings, argument_value(i, arg)]
@@ -80,16 +98,36 @@ contains
       call read_deck(case_dir, deck, settings=settings)
     end if
     call scene_build(deck, sc)
+    call scene_check_start(sc, deck)
     nsteps = deck%run%number_of_steps
+    vtk_frames = 0; outbox_writes = 0
+    if (restart_step >= 0 .and. len(restart_file) == 0) call fatal('--restart-step needs --restart FILE')
+    if (len(restart_file) > 0) then
+      ! Read the whole state before output_open may replace the file it comes from.
+      call restart_load(restart_file, restart_step, sc, vtk_frames, outbox_writes)
+      if (sc%steps_done >= nsteps) call fatal('nothing to run: the restart point is at step '// &
+        itoa(sc%steps_done)//' of '//itoa(nsteps)//' (raise number_of_steps, e.g. --set number_of_steps=N)')
+    end if
+    first_step = sc%steps_done + 1
     if (check_only) then
       write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'check: OK (', sc%bodies%n + sc%meshes%n, ' bodies, ', sc%tactors%n, &
-        ' contactors, ', size(sc%laws), ' contact laws, ', nsteps, ' steps)'
+        ' contactors, ', size(sc%laws), ' contact laws, ', nsteps - first_step + 1, ' steps)'
       return
     end if
 
     call output_open(out, sc, deck, out_dir, overwrite)
     call set_cleanup(close_incomplete)
-    if (deck%run%output_vtk_every > 0) call output_vtk(out, sc)
+    if (.not. quiet .and. sc%meshes%n > 0) write (output_unit, '(a,i0,a,i0,a,i0,a)') 'fracas: ', sc%meshes%n, &
+      ' meshed bodies (', sc%meshes%nnodes, ' nodes, ', sc%meshes%nelem, ' elements); iteration matrices: '// &
+      mailx_solver_summary(sc%meshes)
+    if (len(restart_file) > 0) then
+      out%n_vtk = vtk_frames
+      out%n_out = outbox_writes
+      if (.not. quiet) write (output_unit, '(a,i0,a,es11.4,a)') 'fracas: restarted from '//restart_file// &
+        ' at step ', sc%step, ' (t=', sc%time, ')'
+    else if (deck%run%output_vtk_every > 0) then
+      call output_vtk(out, sc)
+    end if
     every = deck%run%progress_every
     if (every <= 0) every = max(1, nsteps / 20)
     hdf5_every = deck%run%output_hdf5_every
@@ -97,26 +135,32 @@ contains
     total_sweeps = 0; unconverged = 0; worst_residual = 0.0_wp; late = 0; late_max = 0.0_wp
     first_unconverged = 0
     call system_clock(t0, rate)
-    do istep = 1, nsteps
+    do istep = first_step, nsteps
       call scene_step(sc, rep)
+      fault = scene_fault(sc)
+      if (len(fault) > 0) call fatal('step '//itoa(sc%step)//' (t='//rtoa(sc%time)//'): '//fault// &
+        '. The run stops; '//out_dir//'/OUTBOX/fracas.h5 holds the steps before it and is marked incomplete')
       total_sweeps = total_sweeps + rep%nlgs%sweeps
       worst_residual = max(worst_residual, rep%nlgs%residual)
       late = late + rep%late_contacts
       late_max = max(late_max, rep%late_overlap)
       call output_series(out, sc, rep)
       if (every_n(deck%run%output_vtk_every)) call output_vtk(out, sc)
-      if (every_n(hdf5_every)) call output_snapshot(out, sc)
       if (every_n(deck%run%output_dof_every) .or. (deck%run%output_dof_every == 0 .and. istep == nsteps)) &
         call output_outbox(out, sc)
-      if (.not. rep%nlgs%converged) call not_converged()
+      ! A restart point with every snapshot (which flushes the file) and at the last step.
+      if (every_n(hdf5_every) .or. istep == nsteps) call restart_save(out%h5, sc, out%n_vtk, out%n_out)
+      if (every_n(hdf5_every)) call output_snapshot(out, sc)
+      if (.not. (rep%nlgs%converged .and. rep%newton_converged)) call not_converged()
       if (.not. quiet .and. (mod(istep, every) == 0 .or. istep == nsteps)) call progress()
     end do
     call output_close(out)
     call system_clock(t1)
     if (.not. quiet) then
       elapsed = real(t1 - t0, wp) / real(rate, wp)
-      write (output_unit, '(a,i0,a,f0.3,a,i0,a,es9.2)') 'fracas: done: ', nsteps, ' steps in ', elapsed, &
+      write (output_unit, '(a,i0,a,f0.3,a,i0,a,es9.2)') 'fracas: done: ', nsteps - first_step + 1, ' steps in ', elapsed, &
         ' s, ', total_sweeps, ' NLGS sweeps, worst natural-map residual ', worst_residual
+      write (output_unit, '(a)') 'fracas: output: '//output_summary(out)
       write (output_unit, '(a)') 'fracas: results: '//out_dir//'/OUTBOX/fracas.h5'
       if (deck%run%output_vtk_every > 0) write (output_unit, '(a)') 'fracas: ParaView: '//out_dir//'/DISPLAY/fracas.pvd'
     end if
@@ -148,8 +192,13 @@ contains
     character(len=300) :: msg
     unconverged = unconverged + 1
     if (first_unconverged == 0) first_unconverged = sc%step
-    write (msg, '(a,i0,a,es11.4,a,i0,a,es9.2,a)') 'step ', sc%step, ' (t=', sc%time, '): NLGS did not converge in ', &
-      rep%nlgs%sweeps, ' sweeps (', check_norm(), ' / tolerance at the last check; converged below 1)'
+    if (rep%nlgs%converged) then
+      write (msg, '(a,i0,a,es11.4,a,i0,a)') 'step ', sc%step, ' (t=', sc%time, '): the Newton loop of the meshed '// &
+        'bodies did not converge in ', rep%newton_iterations, ' iterations (newton_max_iterations)'
+    else
+      write (msg, '(a,i0,a,es11.4,a,i0,a,es8.2,a)') 'step ', sc%step, ' (t=', sc%time, '): NLGS did not converge in ', &
+        rep%nlgs%sweeps, ' sweeps (norm/tolerance ', check_norm(), ' at the last check, below 1 needed)'
+    end if
     if (deck%run%nlgs_unconverged == 'stop') then
       call output_close(out, complete=.false., end_reason=trim(msg)//'; stopped: nlgs_unconverged = stop')
       call stop_run(trim(msg)//'. The run stops (nlgs_unconverged = stop); '//out_dir// &
@@ -191,7 +240,7 @@ contains
     real(wp) :: el, remaining
     call system_clock(t1)
     el = real(t1 - t0, wp) / real(rate, wp)
-    remaining = el / istep * (nsteps - istep)
+    remaining = el / (istep - first_step + 1) * (nsteps - istep)
     write (output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,i0,a,es9.2,a,f0.1,a,f0.1,a)', advance='no') 'step ', istep, '/', &
       nsteps, '  t=', sc%time, '  contacts ', rep%contacts, '  sweeps ', rep%nlgs%sweeps, '  residual ', &
       rep%nlgs%residual, '  elapsed ', el, ' s  remaining ', remaining, ' s'
@@ -216,6 +265,10 @@ contains
       '  --fail-unconverged the same as --set nlgs_unconverged=fail', &
       '  --output DIR       write OUTBOX/ and DISPLAY/ under DIR instead of CASE_DIR', &
       '  --overwrite        replace results already present', &
+      '  --restart FILE     continue the run whose OUTBOX/fracas.h5 is FILE from its latest restart', &
+      '                     point (bit for bit as if it had not stopped), up to number_of_steps', &
+      '  --restart-step N   restart from the point of step N instead (written with every HDF5', &
+      '                     snapshot and at the last step)', &
       '  --quiet, -q        no progress lines', &
       '  --version, --help', &
       'exit status:', &

@@ -10,7 +10,7 @@ program fracas_fclib
                         sdl_error, sdl_history_points
   use fracas_version, only: version_string
   use fracas_command_line, only: argument_value
-  use fracas_datbox_text, only: lower, itoa
+  use fracas_strings, only: lower, itoa
   implicit none
 
   character(len=:), allocatable :: arg, path, out_file, hist_file, eval_file

@@ -97,33 +97,54 @@ contains
         "VEL_SGR_CLB, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB, IQS_MAC_CZM, MAC_CZM, "// &
         "MP3_CZM, IQS_MAL_CZM, MAL_CZM, IQS_TH_CZM, TH_CZM, IQS_EXPO_CZM, EXPO_CZM)")
     end select
+    ! Checks point at the parameter's own line and column in TACT_BEHAV.DAT.
     if (law%kind == law_czm) then
-      if (law%czm%cn <= 0.0_wp .or. law%czm%ct <= 0.0_wp) call input_error(inp%src%file, inp%src%line, 0, &
-        "cohesive stiffnesses cn and ct of law '"//trim(inp%nickname)//"' must be > 0")
-      if (law%czm%visco < 0.0_wp) call input_error(inp%src%file, inp%src%line, 0, &
-        "damage viscosity of law '"//trim(inp%nickname)//"' must be >= 0")
+      if (law%czm%cn <= 0.0_wp) call bad(3, "cohesive normal stiffness cn of law '"//trim(inp%nickname)//"' must be > 0")
+      if (law%czm%ct <= 0.0_wp) call bad(4, "cohesive tangential stiffness ct of law '"//trim(inp%nickname)// &
+                                         "' must be > 0")
+      if (law%czm%visco < 0.0_wp) call bad(5, "damage viscosity of law '"//trim(inp%nickname)//"' must be >= 0")
       select case (law%czm%family)
       case (czm_mac)
-        if (law%czm%w <= 0.0_wp) call input_error(inp%src%file, inp%src%line, 0, &
-          "Dupré energy w of law '"//trim(inp%nickname)//"' must be > 0")
+        if (law%czm%w <= 0.0_wp) call bad(6, "Dupré energy w of law '"//trim(inp%nickname)//"' must be > 0")
       case (czm_mp3)
-        if (law%czm%w <= 0.0_wp .or. law%czm%smax <= 0.0_wp) call input_error(inp%src%file, inp%src%line, 0, &
-          "strength smax and energy w of law '"//trim(inp%nickname)//"' must be > 0")
+        if (law%czm%smax <= 0.0_wp) call bad(5, "strength smax of law '"//trim(inp%nickname)//"' must be > 0")
+        if (law%czm%w <= 0.0_wp) call bad(6, "energy w of law '"//trim(inp%nickname)//"' must be > 0")
       case default
-        if (min(law%czm%s1, law%czm%s2, law%czm%g1, law%czm%g2) <= 0.0_wp) call input_error(inp%src%file, &
-          inp%src%line, 0, "strengths s1, s2 and energies G1, G2 of law '"//trim(inp%nickname)//"' must be > 0")
+        if (law%czm%s1 <= 0.0_wp) call bad(5, "strength s1 of law '"//trim(inp%nickname)//"' must be > 0")
+        if (law%czm%s2 <= 0.0_wp) call bad(6, "strength s2 of law '"//trim(inp%nickname)//"' must be > 0")
+        if (law%czm%g1 <= 0.0_wp) call bad(7, "energy G1 of law '"//trim(inp%nickname)//"' must be > 0")
+        if (law%czm%g2 <= 0.0_wp) call bad(8, "energy G2 of law '"//trim(inp%nickname)//"' must be > 0")
         if (law%czm%family == czm_expo .and. (law%czm%eta <= 0.0_wp .or. law%czm%eta >= 1.0_wp)) &
-          call input_error(inp%src%file, inp%src%line, 0, "eta of law '"//trim(inp%nickname)//"' must be in (0, 1)")
+          call bad(9, "eta of law '"//trim(inp%nickname)//"' must be in (0, 1)")
       end select
     end if
-    if (law%mu_dynamic < 0.0_wp .or. law%mu_static < 0.0_wp) &
-      call input_error(inp%src%file, inp%src%line, 0, "friction coefficient of law '"// &
-        trim(inp%nickname)//"' must be >= 0")
+    select case (law%kind)
+    case (law_rst_clb, law_rst_ds_clb)
+      if (law%mu_dynamic < 0.0_wp) call bad(3, "friction coefficient of law '"//trim(inp%nickname)//"' must be >= 0")
+      if (law%mu_static < 0.0_wp) call bad(4, "friction coefficient of law '"//trim(inp%nickname)//"' must be >= 0")
+    case default
+      if (law%mu_dynamic < 0.0_wp) call bad(1, "friction coefficient of law '"//trim(inp%nickname)//"' must be >= 0")
+      if (law%mu_static < 0.0_wp) call bad(2, "friction coefficient of law '"//trim(inp%nickname)//"' must be >= 0")
+    end select
     if (law%restn < 0.0_wp .or. law%restn > 1.0_wp) &
-      call input_error(inp%src%file, inp%src%line, 0, "normal restitution of law '"// &
-        trim(inp%nickname)//"' must be in [0, 1]")
+      call bad(1, "normal restitution of law '"//trim(inp%nickname)//"' must be in [0, 1]")
 
   contains
+
+    !> Input error at parameter i (its line and column when the reader recorded
+    !> them; a single-parameter law repeats the value: clamp i).
+    subroutine bad(i, msg)
+      integer, intent(in) :: i
+      character(len=*), intent(in) :: msg
+      integer :: j
+      if (allocated(inp%param_lines)) then
+        if (size(inp%param_lines) > 0) then
+          j = min(i, size(inp%param_lines))
+          call input_error(inp%src%file, inp%param_lines(j), inp%param_cols(j), msg)
+        end if
+      end if
+      call input_error(inp%src%file, inp%src%line, 0, msg)
+    end subroutine bad
 
     real(wp) function param(i)
       integer, intent(in) :: i

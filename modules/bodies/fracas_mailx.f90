@@ -13,15 +13,16 @@
 !>   R(V) = h Fext_θ - M (V - Vb) - h ((1-θ) Fi_b + θ Fi(X(V)))
 !> and A = M + h²θ² K_t (K_t the tangent stiffness at X(V)), an iteration is
 !> V <- V_free + A_ff⁻¹ r, V_free = V + A_ff⁻¹ R(V), on the free dofs; a
-!> velocity-driven dof holds its imposed end-of-step value throughout, and
-!> starts the step from its previous velocity (as LMGC90).
+!> velocity-driven dof holds its imposed end-of-step value throughout and
+!> starts the step at its imposed value (run control driven_start).
 module fracas_mailx
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, input_error
   use fracas_deck, only: deck_t, element_input_t, model_input_t
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response
-  use fracas_bulk, only: bulk_t, bulk_j2, plane_strain, plane_stress, gp_size, bulk_from_material
+  use fracas_bulk, only: bulk_t, bulk_j2, plane_strain, plane_stress, gp_size, bulk_from_material, &
+                         gp_pxx, gp_pzz, gp_p
   use fracas_sparse, only: sparse_t, sparse_from_triplets, sparse_matvec
   use fracas_linear_solver, only: factor_t, factor_build, factor_update, factor_solve, factor_free, &
                                   factor_method_name, dense_spd_inverse
@@ -29,13 +30,16 @@ module fracas_mailx
   private
   public :: mailx_t, mailx_build, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
-            mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_solver_summary, &
+            mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
             mailx_dense_max, mailx_gauss_values
 
   !> Bodies with at most this many dofs keep a dense inverse of A_ff (exploded
   !> elements, small meshes: the inverse is the contact compliance); larger
   !> ones a sparse factorization (see mailx_t%method).
   integer, parameter :: mailx_dense_max = 64
+  !> A large body's contact compliance is computed at once on all the nodes its
+  !> contactors hold when they are at most this many (a 2000 x 2000 matrix).
+  integer, parameter :: compliance_cap = 1000
 
   !> A large body: its element-matrix triplets (pattern fixed), stiffness and
   !> consistent mass for products, the factorization of A_ff, and the contact
@@ -79,6 +83,7 @@ module fracas_mailx
     ! inertia force M (V - V_begin) / h of the last step.
     real(wp), allocatable :: fext(:, :), fint_begin(:, :), fint(:, :), res(:, :), imp(:, :), fsupport(:, :)
     real(wp), allocatable :: finert(:, :)
+    real(wp), allocatable :: tmp(:, :)         !< (2,nnodes) scratch of the body-by-body products
     ! Linear algebra per body: small bodies dense (K, consistent M, A_ff⁻¹ with
     ! zero rows and columns on driven dofs, ndof² each from dfirst(b)), large
     ! ones sparse.
@@ -91,11 +96,14 @@ module fracas_mailx
     ! A dense body's set is all its nodes in order and its compliance is dinv;
     ! a large body's set is big(b)%cnodes and its compliance big(b)%c.
     integer, allocatable :: cslot(:)
+    logical, allocatable :: contact_hint(:)    !< (nnodes) a contactor holds the node
     real(wp), allocatable :: eel(:), wpl(:)    !< (n) elastic energy and plastic work of the last element loop
     ! Energy (per unit thickness)
     real(wp) :: kinetic0 = 0.0_wp, elastic = 0.0_wp, plastic_work = 0.0_wp
     real(wp) :: work_gravity = 0.0_wp, work_forces = 0.0_wp, work_supports = 0.0_wp
     integer :: iterations = 0                  !< Newton iterations of the last step
+    logical :: newton_converged = .true.       !< the last step's Newton loop met its tolerance
+    logical :: driven_start_imposed = .true.   !< a driven dof starts a step at its imposed value
   end type mailx_t
 
 contains
@@ -114,6 +122,7 @@ contains
     m%gravity = deck%gravity(1:2)
     m%plane = merge(plane_stress, plane_strain, deck%run%plane == 'stress')
     m%method = trim(deck%run%linear_solver)
+    m%driven_start_imposed = deck%run%driven_start == 'imposed'
     m%n = count(deck%bodies%model == 'MAILx')
     allocate (m%node_first(m%n + 1), m%elem_first(m%n + 1))
     nn = 0; ne = 0; nel_nodes = 0; ng = 0; b = 0
@@ -139,7 +148,7 @@ contains
               m%vfree(2, nn), m%driven(2, nn), m%movable(m%n), m%el_kind(ne), m%el_mat(ne), m%el_first(ne + 1), &
               m%el_nodes(nel_nodes), m%el_gp(ne + 1), m%gp(gp_size, ng), m%gp_begin(gp_size, ng), &
               m%nonlinear(m%n), m%lumped(m%n), m%mdiag(2, nn), m%fext(2, nn), m%fint_begin(2, nn), &
-              m%fint(2, nn), m%res(2, nn), m%imp(2, nn), m%fsupport(2, nn), m%finert(2, nn))
+              m%fint(2, nn), m%res(2, nn), m%imp(2, nn), m%fsupport(2, nn), m%finert(2, nn), m%tmp(2, nn))
     m%x = 0.0_wp; m%v = 0.0_wp; m%vfree = 0.0_wp
     m%driven = .false.
     m%gp = 0.0_wp
@@ -218,9 +227,11 @@ contains
     end do
     m%x = m%xbegin
     m%v = m%vbegin
-    ! Mass, stiffness and internal forces at the initial displacement; the
-    ! Gauss-point states of GPV.INI are not restored (a J2 body starts virgin).
+    ! Mass, stiffness and internal forces at the initial displacement, from the
+    ! plastic state of GPV.INI (elastic bodies need none: their stresses follow
+    ! from the displacements).
     m%gp_begin = 0.0_wp
+    call restore_plastic_state(m, deck)
     call assemble_all(m)
     m%fint_begin = m%fint
     m%gp_begin = m%gp
@@ -243,6 +254,35 @@ contains
         call input_error(file, line, 9, 'node number out of range for this MAILx body')
     end function mesh_node
   end subroutine mailx_build
+
+  !> Plastic strain and cumulative plastic strain of J2 elements from GPV.INI:
+  !> the internals line Fracas writes (plastic strain xx, yy, γxy, zz, p, von
+  !> Mises), or LMGC90's Q4P0x line (Cp⁻¹ 11, 22, 12, 33, p, von Mises), whose
+  !> finite-strain Cp⁻¹ ≈ I − 2 ε_p is taken to first order.
+  subroutine restore_plastic_state(m, deck)
+    type(mailx_t), intent(inout) :: m
+    type(deck_t), intent(in) :: deck
+    integer :: k, e, g, ng
+    real(wp) :: v(6)
+    do k = 1, size(deck%gpv_ini)
+      associate (r => deck%gpv_ini(k))
+        if (r%body < 1 .or. r%body > m%n) call input_error(r%src%file, r%src%line, 9, &
+          'GPV.INI: MAILx body number out of range')
+        e = m%elem_first(r%body) - 1 + r%element
+        if (r%element < 1 .or. e >= m%elem_first(r%body + 1)) call input_error(r%src%file, r%src%line, 9, &
+          'GPV.INI: element number out of range for this MAILx body')
+        if (m%mats(m%el_mat(e))%law /= bulk_j2 .or. size(r%values, 1) < 14) cycle
+        ng = m%el_gp(e + 1) - m%el_gp(e)
+        do g = 1, ng
+          v = r%values(9:14, min(g, size(r%values, 2)))
+          if (abs(v(1) - 1.0_wp) < 0.5_wp .and. abs(v(2) - 1.0_wp) < 0.5_wp) &   ! LMGC90's Cp^-1
+            v(1:4) = [0.5_wp * (1.0_wp - v(1)), 0.5_wp * (1.0_wp - v(2)), -v(3), 0.5_wp * (1.0_wp - v(4))]
+          m%gp_begin(gp_pxx:gp_pzz, m%el_gp(e) + g - 1) = v(1:4)
+          m%gp_begin(gp_p, m%el_gp(e) + g - 1) = v(5)
+        end do
+      end associate
+    end do
+  end subroutine restore_plastic_state
 
   !> Element kind of an element line: its model may name the element (LMGC90
   !> writes Q4xxx geometry with a Q4P0x model).
@@ -418,45 +458,41 @@ contains
         call assemble_body(m, b, u, with_mass=.false.)
         call factorize_body(m, b)
       else
-        call body_k_times(m, b, u(:, i1:i2), m%fint(:, i1:i2))
+        call body_k_times(m, b, 2 * (i2 - i1 + 1), u(:, i1:i2), m%fint(:, i1:i2))
       end if
     end do
   end subroutine internal_forces
 
-  !> y = K u on body b (u, y: (2, nodes of b)).
-  subroutine body_k_times(m, b, u, y)
+  !> y = K u on body b (u, y: its nodes' (x, y) pairs, nd = 2 x nodes; the
+  !> callers pass columns of the node arrays, contiguous: no copies).
+  subroutine body_k_times(m, b, nd, u, y)
     type(mailx_t), intent(in) :: m
-    integer, intent(in) :: b
-    real(wp), intent(in) :: u(:, :)
-    real(wp), intent(out) :: y(:, :)
-    integer :: nd
-    real(wp) :: yv(body_ndof(m, b))
-    nd = body_ndof(m, b)
+    integer, intent(in) :: b, nd
+    real(wp), intent(in) :: u(nd)
+    real(wp), intent(out) :: y(nd)
     if (m%dense(b)) then
-      call dense_times(m%dk(m%dfirst(b) + 1:m%dfirst(b) + nd * nd), nd, reshape(u, [nd]), yv)
+      call dense_times(m%dk(m%dfirst(b) + 1), nd, u, y)
     else
-      call sparse_matvec(m%big(b)%k, reshape(u, [nd]), yv)
+      call sparse_matvec(m%big(b)%k, u, y)
     end if
-    y = reshape(yv, [2, nd / 2])
   end subroutine body_k_times
 
-  !> y = M v on body b.
-  subroutine body_m_times(m, b, v, y)
+  !> y = M v on body b (as body_k_times).
+  subroutine body_m_times(m, b, nd, v, y)
     type(mailx_t), intent(in) :: m
-    integer, intent(in) :: b
-    real(wp), intent(in) :: v(:, :)
-    real(wp), intent(out) :: y(:, :)
-    integer :: nd
-    real(wp) :: yv(body_ndof(m, b))
-    nd = body_ndof(m, b)
+    integer, intent(in) :: b, nd
+    real(wp), intent(in) :: v(nd)
+    real(wp), intent(out) :: y(nd)
+    integer :: i, n0
     if (m%lumped(b)) then
-      y = m%mdiag(:, m%node_first(b):m%node_first(b + 1) - 1) * v
+      n0 = m%node_first(b) - 1
+      do i = 1, nd
+        y(i) = m%mdiag(2 - mod(i, 2), n0 + (i + 1) / 2) * v(i)
+      end do
     else if (m%dense(b)) then
-      call dense_times(m%dm(m%dfirst(b) + 1:m%dfirst(b) + nd * nd), nd, reshape(v, [nd]), yv)
-      y = reshape(yv, [2, nd / 2])
+      call dense_times(m%dm(m%dfirst(b) + 1), nd, v, y)
     else
-      call sparse_matvec(m%big(b)%mass, reshape(v, [nd]), yv)
-      y = reshape(yv, [2, nd / 2])
+      call sparse_matvec(m%big(b)%mass, v, y)
     end if
   end subroutine body_m_times
 
@@ -544,30 +580,28 @@ contains
     end associate
   end subroutine factorize_body
 
-  !> x := A_ff⁻¹ x on body b (x: (2, nodes of b); driven dofs of x are ignored
-  !> on input and zero on output).
-  subroutine body_solve(m, b, x)
+  !> x := A_ff⁻¹ x on body b (x as in body_k_times; driven dofs of x are
+  !> ignored on input and zero on output).
+  subroutine body_solve(m, b, nd, x)
     type(mailx_t), intent(inout) :: m
-    integer, intent(in) :: b
-    real(wp), intent(inout) :: x(:, :)
-    integer :: nd, i
-    real(wp) :: xv(body_ndof(m, b)), yv(body_ndof(m, b))
+    integer, intent(in) :: b, nd
+    real(wp), intent(inout) :: x(nd)
+    integer :: i
+    real(wp) :: y(nd)
     real(wp), allocatable :: xf(:)
-    nd = body_ndof(m, b)
-    xv = reshape(x, [nd])
     if (m%dense(b)) then
-      call dense_times(m%dinv(m%dfirst(b) + 1:m%dfirst(b) + nd * nd), nd, xv, yv)
+      call dense_times(m%dinv(m%dfirst(b) + 1), nd, x, y)
+      x = y
     else
       associate (bb => m%big(b))
-        xf = pack(xv, bb%free_of > 0)
+        xf = pack(x, bb%free_of > 0)
         call factor_solve(m%big(b)%f, xf)
-        yv = 0.0_wp
         do i = 1, nd
-          if (bb%free_of(i) > 0) yv(i) = xf(bb%free_of(i))
+          x(i) = 0.0_wp
+          if (bb%free_of(i) > 0) x(i) = xf(bb%free_of(i))
         end do
       end associate
     end if
-    x = reshape(yv, [2, nd / 2])
   end subroutine body_solve
 
   !> Start of a step [t, t+h]: external forces (gravity, θ-averaged driven
@@ -576,13 +610,19 @@ contains
   subroutine mailx_begin_step(m, t)
     type(mailx_t), intent(inout) :: m
     real(wp), intent(in) :: t
-    integer :: k, b
-    real(wp), allocatable :: g(:, :)
+    integer :: k, b, i1, i2
     m%time = t
     m%iterations = 0
+    m%tmp(1, :) = m%gravity(1)
+    m%tmp(2, :) = m%gravity(2)
     do b = 1, m%n
-      g = spread(m%gravity, 2, m%node_first(b + 1) - m%node_first(b))
-      call body_m_times(m, b, g, m%fext(:, m%node_first(b):m%node_first(b + 1) - 1))
+      i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
+      call body_m_times(m, b, 2 * (i2 - i1 + 1), m%tmp(:, i1:i2), m%fext(:, i1:i2))
+    end do
+    do k = 1, size(m%drives)
+      associate (d => m%drives(k))
+        if (d%is_velocity .and. m%driven_start_imposed) m%vbegin(d%dof, d%body) = drive_value(d, t)
+      end associate
     end do
     m%v = m%vbegin
     do k = 1, size(m%drives)
@@ -604,16 +644,14 @@ contains
   subroutine mailx_iterate(m)
     type(mailx_t), intent(inout) :: m
     integer :: b, i1, i2
-    real(wp), allocatable :: dv(:, :)
     m%iterations = m%iterations + 1
     call residual(m)
-    m%vfree = m%v
+    m%vfree = m%res
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
-      dv = m%res(:, i1:i2)
-      call body_solve(m, b, dv)
-      m%vfree(:, i1:i2) = m%v(:, i1:i2) + dv
+      call body_solve(m, b, 2 * (i2 - i1 + 1), m%vfree(:, i1:i2))
     end do
+    m%vfree = m%v + m%vfree
   end subroutine mailx_iterate
 
   !> m%res = R(V) = h Fext - M (V - Vb) - h ((1-θ) Fi_b + θ Fi(X(V))).
@@ -622,9 +660,10 @@ contains
     integer :: b, i1, i2
     m%x = m%xbegin + m%h * ((1.0_wp - m%theta) * m%vbegin + m%theta * m%v)
     call internal_forces(m, m%x)
+    m%tmp = m%v - m%vbegin
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
-      call body_m_times(m, b, m%v(:, i1:i2) - m%vbegin(:, i1:i2), m%res(:, i1:i2))
+      call body_m_times(m, b, 2 * (i2 - i1 + 1), m%tmp(:, i1:i2), m%res(:, i1:i2))
     end do
     m%res = m%h * m%fext - m%res - m%h * ((1.0_wp - m%theta) * m%fint_begin + m%theta * m%fint)
   end subroutine residual
@@ -635,16 +674,14 @@ contains
     type(mailx_t), intent(inout) :: m
     real(wp), intent(in) :: imp(:, :)
     integer :: b, i1, i2
-    real(wp), allocatable :: dv(:, :)
     m%imp = imp
-    m%v = m%vfree
+    m%tmp = imp
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
       if (all(imp(:, i1:i2) == 0.0_wp)) cycle
-      dv = imp(:, i1:i2)
-      call body_solve(m, b, dv)
-      m%v(:, i1:i2) = m%v(:, i1:i2) + dv
+      call body_solve(m, b, 2 * (i2 - i1 + 1), m%tmp(:, i1:i2))
     end do
+    m%v = m%vfree + m%tmp
   end subroutine mailx_velocity_from_impulses
 
   !> After a contact solve: is the step's Newton loop converged? Linear scenes
@@ -657,12 +694,14 @@ contains
     integer, intent(in) :: max_iterations
     real(wp) :: unbalanced, scale
     done = .true.
+    m%newton_converged = .true.
     if (.not. m%any_nonlinear) return
     call mailx_iterate(m)
     unbalanced = sqrt(sum((m%res + m%imp)**2, mask=.not. m%driven))
     scale = sqrt(sum((m%h * m%fext)**2)) + sqrt(sum((m%h * m%fint)**2)) + sqrt(sum(m%imp**2)) + &
             sqrt(sum((m%mdiag * (m%v - m%vbegin))**2))
-    done = unbalanced <= tol * max(scale, tiny(1.0_wp)) .or. m%iterations > max_iterations
+    m%newton_converged = unbalanced <= tol * max(scale, tiny(1.0_wp))
+    done = m%newton_converged .or. m%iterations > max_iterations
   end function mailx_converged
 
   !> Detection configuration of the nodes: X_b + (1-θ) h V_b from the reference.
@@ -703,16 +742,19 @@ contains
   contains
     subroutine residual_at_end()
       integer :: b, i1, i2
-      real(wp), allocatable :: r(:, :)
-      allocate (r(2, m%nnodes))
+      m%tmp = m%v - m%vbegin
       do b = 1, m%n
         i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
-        call body_m_times(m, b, m%v(:, i1:i2) - m%vbegin(:, i1:i2), r(:, i1:i2))
+        call body_m_times(m, b, 2 * (i2 - i1 + 1), m%tmp(:, i1:i2), m%fsupport(:, i1:i2))
       end do
-      m%finert = r / m%h
-      r = m%h * m%fext - r - m%h * ((1.0_wp - m%theta) * m%fint_begin + m%theta * m%fint)
-      m%fsupport = 0.0_wp
-      where (m%driven) m%fsupport = -(r + m%imp) / m%h
+      m%finert = m%fsupport / m%h
+      ! the drives' force closes the equation of motion of their dofs
+      where (m%driven)
+        m%fsupport = -(m%h * m%fext - m%fsupport - m%h * ((1.0_wp - m%theta) * m%fint_begin + m%theta * m%fint) &
+                       + m%imp) / m%h
+      elsewhere
+        m%fsupport = 0.0_wp
+      end where
     end subroutine residual_at_end
   end subroutine mailx_end_step
 
@@ -722,14 +764,12 @@ contains
     type(mailx_t), intent(in) :: m
     integer :: b, i1, i2
     real(wp), allocatable :: mv(:, :)
-    e = 0.0_wp
+    allocate (mv(2, m%nnodes))
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
-      allocate (mv(2, i2 - i1 + 1))
-      call body_m_times(m, b, m%v(:, i1:i2), mv)
-      e = e + 0.5_wp * sum(mv * m%v(:, i1:i2))
-      deallocate (mv)
+      call body_m_times(m, b, 2 * (i2 - i1 + 1), m%v(:, i1:i2), mv(:, i1:i2))
     end do
+    e = 0.5_wp * sum(mv * m%v)
   end function mailx_kinetic_energy
 
   !> Stored elastic energy: 1/2 X^T K X for linear bodies, the Gauss-point
@@ -739,16 +779,15 @@ contains
     type(mailx_t), intent(in) :: m
     integer :: b, i1, i2
     real(wp), allocatable :: kx(:, :)
+    allocate (kx(2, m%nnodes))
     e = 0.0_wp
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
       if (m%nonlinear(b)) then
         e = e + m%eel(b)
       else
-        allocate (kx(2, i2 - i1 + 1))
-        call body_k_times(m, b, m%x(:, i1:i2), kx)
-        e = e + 0.5_wp * sum(kx * m%x(:, i1:i2))
-        deallocate (kx)
+        call body_k_times(m, b, 2 * (i2 - i1 + 1), m%x(:, i1:i2), kx(:, i1:i2))
+        e = e + 0.5_wp * sum(kx(:, i1:i2) * m%x(:, i1:i2))
       end if
     end do
   end function elastic_energy
@@ -782,8 +821,9 @@ contains
   subroutine compliance_sets_init(m)
     type(mailx_t), intent(inout) :: m
     integer :: b, j
-    allocate (m%cslot(m%nnodes))
+    allocate (m%cslot(m%nnodes), m%contact_hint(m%nnodes))
     m%cslot = 0
+    m%contact_hint = .false.
     do b = 1, m%n
       if (.not. m%dense(b)) cycle
       do j = m%node_first(b), m%node_first(b + 1) - 1
@@ -820,13 +860,15 @@ contains
   end function mailx_contact_set
 
   !> Make sure the compliance of every listed node's body covers that node:
-  !> large bodies whose set lacks a node get a new set (the old set and the
-  !> new nodes) and its compliance by solves with the factorization.
+  !> a large body whose set lacks a node gets a new set, the old one and the
+  !> new nodes and, once, every node the contacts may touch (contact_hint, up
+  !> to compliance_cap nodes), and its compliance by solves with the
+  !> factorization (all columns at once). A linear body so computes it once.
   subroutine mailx_require_compliance(m, nodes)
     type(mailx_t), intent(inout) :: m
     integer, intent(in) :: nodes(:)
-    integer :: k, b, j, ns
-    logical, allocatable :: grow(:)
+    integer :: k, b, j, ncand
+    logical, allocatable :: grow(:), wanted(:)
     integer, allocatable :: newset(:)
     allocate (grow(m%n))
     grow = .false.
@@ -836,45 +878,65 @@ contains
       if (m%cslot(nodes(k)) == 0 .or. .not. allocated(m%big(b)%c)) grow(b) = .true.
     end do
     if (.not. any(grow)) return
+    allocate (wanted(m%nnodes))
+    wanted = .false.
+    wanted(nodes) = .true.
     do b = 1, m%n
       if (.not. grow(b)) cycle
-      ! The new set: nodes of the old set and the listed nodes of b, in node order.
-      allocate (newset(0))
-      do j = m%node_first(b), m%node_first(b + 1) - 1
-        if (m%cslot(j) > 0 .or. any(nodes == j)) newset = [newset, j]
-      end do
+      ncand = count(m%contact_hint(m%node_first(b):m%node_first(b + 1) - 1))
+      newset = pack([(j, j=m%node_first(b), m%node_first(b + 1) - 1)], &
+                     m%cslot(m%node_first(b):m%node_first(b + 1) - 1) > 0 .or. &
+                     wanted(m%node_first(b):m%node_first(b + 1) - 1) .or. &
+                     (m%contact_hint(m%node_first(b):m%node_first(b + 1) - 1) .and. ncand <= compliance_cap))
       call set_compliance(m, b, newset)
-      deallocate (newset)
     end do
   contains
     subroutine set_compliance(m, b, set)
       type(mailx_t), intent(inout) :: m
       integer, intent(in) :: b, set(:)
-      integer :: i, d, col, nb
-      real(wp), allocatable :: e(:, :)
-      do i = m%node_first(b), m%node_first(b + 1) - 1
-        m%cslot(i) = 0
-      end do
+      integer :: i, d, ns, nd, n0
+      real(wp), allocatable :: e(:, :), ef(:, :)
       ns = size(set)
-      nb = m%node_first(b + 1) - m%node_first(b)
-      if (allocated(m%big(b)%c)) deallocate (m%big(b)%c)
-      allocate (m%big(b)%c(2 * ns, 2 * ns), e(2, nb))
+      n0 = m%node_first(b) - 1
+      nd = body_ndof(m, b)
+      m%cslot(n0 + 1:n0 + nd / 2) = 0
       do i = 1, ns
         m%cslot(set(i)) = i
       end do
+      ! columns: unit impulses at the set's dofs, solved together on the free dofs
+      allocate (e(nd, 2 * ns))
+      e = 0.0_wp
       do i = 1, ns
         do d = 1, 2
-          col = 2 * (i - 1) + d
-          e = 0.0_wp
-          e(d, set(i) - m%node_first(b) + 1) = 1.0_wp
-          call body_solve(m, b, e)
-          m%big(b)%c(1:2 * ns:2, col) = e(1, set - m%node_first(b) + 1)
-          m%big(b)%c(2:2 * ns:2, col) = e(2, set - m%node_first(b) + 1)
+          e(2 * (set(i) - n0 - 1) + d, 2 * (i - 1) + d) = 1.0_wp
         end do
       end do
-      m%big(b)%cnodes = set
+      associate (bb => m%big(b))
+        ef = e(pack([(i, i=1, nd)], bb%free_of > 0), :)
+        call factor_solve(bb%f, ef)
+        e = 0.0_wp
+        do i = 1, nd
+          if (bb%free_of(i) > 0) e(i, :) = ef(bb%free_of(i), :)
+        end do
+        if (allocated(bb%c)) deallocate (bb%c)
+        allocate (bb%c(2 * ns, 2 * ns))
+        do i = 1, ns
+          bb%c(2 * i - 1, :) = e(2 * (set(i) - n0) - 1, :)
+          bb%c(2 * i, :) = e(2 * (set(i) - n0), :)
+        end do
+        bb%cnodes = set
+      end associate
     end subroutine set_compliance
   end subroutine mailx_require_compliance
+
+  !> Mark the nodes contacts may touch (the nodes of the meshes' contactors):
+  !> a large body's compliance then covers them all from the first contact.
+  subroutine mailx_set_contact_hint(m, nodes)
+    type(mailx_t), intent(inout) :: m
+    integer, intent(in) :: nodes(:)
+    m%contact_hint = .false.
+    m%contact_hint(nodes) = .true.
+  end subroutine mailx_set_contact_hint
 
   !> The contact dofs of body b: the number of nodes of its compliance set.
   !> Columns 2s-1 and 2s of its compliance matrix (x and y impulse at the
@@ -897,19 +959,25 @@ contains
     end if
   end subroutine mailx_compliance_columns
 
-  !> One line per distinct way the bodies' iteration matrices are solved.
+  !> How the bodies' iteration matrices are solved, in one line: the dense
+  !> inverses, and the sparse factorization of each large body (first three).
   function mailx_solver_summary(m) result(s)
     type(mailx_t), intent(in) :: m
     character(len=:), allocatable :: s
-    integer :: b, ndense
+    integer :: b, shown
     character(len=32) :: buf
-    ndense = count(m%dense)
-    write (buf, '(i0)') ndense
-    s = trim(buf)//' meshed bodies with a dense inverse (LAPACK)'
+    write (buf, '(i0)') count(m%dense)
+    s = trim(buf)//' dense inverses (LAPACK)'
+    shown = 0
     do b = 1, m%n
       if (m%dense(b)) cycle
+      shown = shown + 1
       write (buf, '(i0)') b
-      s = s//'; body '//trim(buf)//': '//factor_method_name(m%big(b)%f)
+      if (shown <= 3) s = s//'; body '//trim(buf)//': '//factor_method_name(m%big(b)%f)
     end do
+    if (shown > 3) then
+      write (buf, '(i0)') shown - 3
+      s = s//'; and '//trim(buf)//' more sparse bodies'
+    end if
   end function mailx_solver_summary
 end module fracas_mailx

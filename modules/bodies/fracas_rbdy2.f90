@@ -27,6 +27,7 @@ module fracas_rbdy2
     logical, allocatable :: clamped(:)          !< every dof velocity-driven
     real(wp) :: gravity(2) = 0.0_wp
     type(drive_t), allocatable :: drives(:)
+    logical :: driven_start_imposed = .true.    !< a driven dof starts a step at its imposed value
   end type rbdy2_t
 
 contains
@@ -89,13 +90,15 @@ contains
           (1.0_wp - theta) * drive_value(d, t) + theta * drive_value(d, t + h)
       end associate
     end do
-    ! A driven dof moves with its imposed velocity at both ends of the step,
-    ! whatever the initial state said.
-    do k = 1, size(b%drives)
-      associate (d => b%drives(k))
-        if (d%is_velocity) b%vbegin(d%dof, d%body) = drive_value(d, t)
-      end associate
-    end do
+    ! A driven dof starts the step at its imposed value (LMGC90's RBDY2, whatever
+    ! DOF.INI said), or from its previous velocity; it ends at its imposed value.
+    if (b%driven_start_imposed) then
+      do k = 1, size(b%drives)
+        associate (d => b%drives(k))
+          if (d%is_velocity) b%vbegin(d%dof, d%body) = drive_value(d, t)
+        end associate
+      end do
+    end if
     b%vfree = b%vbegin + h * b%inv_mass * b%fext
     do k = 1, size(b%drives)
       associate (d => b%drives(k))

@@ -2,7 +2,8 @@
 !> law and alert distance), the broad phase with cell lists (cost linear in the
 !> number of contactors) and the fine detection per interaction type.
 module fracas_detection
-  use fracas_kinds, only: wp
+  use fracas_kinds, only: wp, i8
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_deck, only: see_rule_input_t
   use fracas_errors, only: input_error
   use fracas_ids, only: i_dkdkx, i_dkjcx, i_dkkdx, i_dkplx, i_plplx, i_pljcx, i_clalp, i_cljcx, i_dkalp, i_plalp, &
@@ -207,20 +208,32 @@ contains
   !> Broad phase: every pair of contactors of different bodies, allowed by the
   !> see table, whose bounding circles come within alert + margin. Ordinary
   !> disks, polygons and mesh contactors are binned in square cells; big
-  !> contactors are tested against all.
+  !> contactors are tested against all. Cells are visited row by row, each
+  !> against the forward half of its neighbours, so pairs come in cell order
+  !> (spatially sorted contacts). The grid is dense (a counting sort) while it
+  !> has at most about 4 cells per contactor; a sparse scene (bodies far apart or
+  !> one far away) keeps only its occupied cells, sorted by (row, column): memory
+  !> stays linear whatever the distances. With the same cell size both give the
+  !> same pairs in the same order. Contactors whose centre is not finite are left
+  !> out (the run's state check stops such a run at the end of the step).
   !> q(3, rigid bodies) places rigid contactors, xn(2, mesh nodes) mesh ones.
   !> movable / mesh_movable: false for bodies whose every dof is driven.
-  subroutine detect_rough(det, t, q, movable, margin, xn, mesh_movable)
+  !> sparse_grid forces the sparse cells (tests).
+  subroutine detect_rough(det, t, q, movable, margin, xn, mesh_movable, sparse_grid)
     type(detection_t), intent(inout) :: det
     type(tactors_t), intent(in) :: t
     real(wp), intent(in) :: q(:, :), margin
     logical, intent(in) :: movable(:)
     real(wp), intent(in), optional :: xn(:, :)
     logical, intent(in), optional :: mesh_movable(:)
+    logical, intent(in), optional :: sparse_grid
     real(wp), allocatable :: c(:, :), bound(:)
     integer, allocatable :: cell_of(:), cell_start(:), items(:), fill(:), bigs(:)
-    integer :: k, j, nx, ny, ix, iy, jx, jy, cell, p, nsmall, ib
-    real(wp) :: lo(2), hi(2), size_cell, rmax
+    integer(i8), allocatable :: key(:), cell_key(:)
+    logical, allocatable :: binned(:), usable(:)
+    integer :: k, j, nx, ny, ix, iy, jx, jy, cell, p, nsmall, ib, ncell
+    real(wp) :: lo(2), hi(2), size_cell, reach_cell, rmax, cells
+    logical :: sparse
     allocate (c(2, t%n), bound(t%n))
     do k = 1, t%n
       call placement(t, k, q, xn, c(:, k), bound(k))
@@ -229,57 +242,99 @@ contains
       if (t%model(k) == bm_mesh) det%small(k) = t%kind(k) == tk_clxxx .or. &
         det%rigid_median <= 0.0_wp .or. bound(k) <= 10.0_wp * det%rigid_median
     end do
+    usable = ieee_is_finite(c(1, :)) .and. ieee_is_finite(c(2, :))
+    binned = det%small .and. usable
     det%npairs = 0
-    nsmall = count(det%small)
-    bigs = pack([(k, k=1, t%n)], .not. det%small)
+    nsmall = count(binned)
+    bigs = pack([(k, k=1, t%n)], .not. det%small .and. usable)
     if (nsmall > 0) then
-      rmax = maxval(bound, mask=det%small)
-      size_cell = 2.0_wp * rmax + det%max_alert + margin
-      lo = [minval(c(1, :), mask=det%small), minval(c(2, :), mask=det%small)]
-      hi = [maxval(c(1, :), mask=det%small), maxval(c(2, :), mask=det%small)]
-      ! Cap the grid at about 4 cells per disk for sparse scenes.
-      size_cell = max(size_cell, sqrt(max((hi(1) - lo(1)) * (hi(2) - lo(2)), tiny(1.0_wp)) / (4.0_wp * nsmall)))
-      nx = max(1, int((hi(1) - lo(1)) / size_cell) + 1)
-      ny = max(1, int((hi(2) - lo(2)) / size_cell) + 1)
-      allocate (cell_of(t%n), cell_start(nx * ny + 1), items(nsmall))
-      cell_start = 0
-      do k = 1, t%n
-        if (.not. det%small(k)) cycle
-        ix = min(nx - 1, int((c(1, k) - lo(1)) / size_cell))
-        iy = min(ny - 1, int((c(2, k) - lo(2)) / size_cell))
-        cell_of(k) = 1 + ix + nx * iy
-        cell_start(cell_of(k) + 1) = cell_start(cell_of(k) + 1) + 1
-      end do
-      cell_start(1) = 1
-      do k = 1, nx * ny
-        cell_start(k + 1) = cell_start(k + 1) + cell_start(k)
-      end do
-      fill = cell_start(1:nx * ny)
-      do k = 1, t%n
-        if (.not. det%small(k)) cycle
-        items(fill(cell_of(k))) = k
-        fill(cell_of(k)) = fill(cell_of(k)) + 1
-      end do
-      ! Visit cells in order (spatially sorted contacts); each pair once (j > k within a cell,
-      ! all of the forward half-stencil of neighbour cells).
-      do cell = 1, nx * ny
-        ix = mod(cell - 1, nx)
-        iy = (cell - 1) / nx
-        do p = cell_start(cell), cell_start(cell + 1) - 1
-          k = items(p)
-          do jy = iy, min(ny - 1, iy + 1)
-            do jx = max(0, ix - 1), min(nx - 1, ix + 1)
-              if (jy == iy .and. jx < ix) cycle
-              call scan_cell(k, 1 + jx + nx * jy, jx == ix .and. jy == iy, p)
+      rmax = maxval(bound, mask=binned)
+      reach_cell = 2.0_wp * rmax + det%max_alert + margin
+      lo = [minval(c(1, :), mask=binned), minval(c(2, :), mask=binned)]
+      hi = [maxval(c(1, :), mask=binned), maxval(c(2, :), mask=binned)]
+      ! Dense grid: cells enlarged to about 4 per disk for thin scenes; if it
+      ! would still have more, the sparse grid with the smallest cells.
+      size_cell = max(reach_cell, sqrt(max((hi(1) - lo(1)) * (hi(2) - lo(2)), tiny(1.0_wp)) / (4.0_wp * nsmall)))
+      cells = ((hi(1) - lo(1)) / size_cell + 1.0_wp) * ((hi(2) - lo(2)) / size_cell + 1.0_wp)
+      sparse = .not. (cells <= 4.0_wp * nsmall + 64.0_wp)
+      if (present(sparse_grid)) sparse = sparse .or. sparse_grid
+      if (sparse) size_cell = reach_cell
+      allocate (cell_of(t%n), items(nsmall))
+      if (.not. sparse) then
+        nx = max(1, int((hi(1) - lo(1)) / size_cell) + 1)
+        ny = max(1, int((hi(2) - lo(2)) / size_cell) + 1)
+        allocate (cell_start(nx * ny + 1))
+        cell_start = 0
+        do k = 1, t%n
+          if (.not. binned(k)) cycle
+          ix = min(nx - 1, int((c(1, k) - lo(1)) / size_cell))
+          iy = min(ny - 1, int((c(2, k) - lo(2)) / size_cell))
+          cell_of(k) = 1 + ix + nx * iy
+          cell_start(cell_of(k) + 1) = cell_start(cell_of(k) + 1) + 1
+        end do
+        cell_start(1) = 1
+        do k = 1, nx * ny
+          cell_start(k + 1) = cell_start(k + 1) + cell_start(k)
+        end do
+        fill = cell_start(1:nx * ny)
+        do k = 1, t%n
+          if (.not. binned(k)) cycle
+          items(fill(cell_of(k))) = k
+          fill(cell_of(k)) = fill(cell_of(k)) + 1
+        end do
+        ! Each pair once: j > k within a cell, all of the forward half-stencil of neighbour cells.
+        do cell = 1, nx * ny
+          ix = mod(cell - 1, nx)
+          iy = (cell - 1) / nx
+          do p = cell_start(cell), cell_start(cell + 1) - 1
+            k = items(p)
+            do jy = iy, min(ny - 1, iy + 1)
+              do jx = max(0, ix - 1), min(nx - 1, ix + 1)
+                if (jy == iy .and. jx < ix) cycle
+                call scan_cell(k, 1 + jx + nx * jy, jx == ix .and. jy == iy, p)
+              end do
             end do
           end do
         end do
-      end do
+      else
+        ! Occupied cells only: key = row * 2^31 + column (indices clamped to
+        ! 2^30; clamping keeps neighbours neighbours), sorted stably.
+        allocate (key(nsmall))
+        j = 0
+        do k = 1, t%n
+          if (.not. binned(k)) cycle
+          j = j + 1
+          items(j) = k
+          key(j) = cell_index(c(2, k) - lo(2)) * 2_i8**31 + cell_index(c(1, k) - lo(1))
+        end do
+        call sort_by_key(key, items)
+        ncell = 0
+        allocate (cell_key(nsmall), cell_start(nsmall + 1))
+        do j = 1, nsmall
+          if (j > 1) then
+            if (key(j) == key(j - 1)) cycle
+          end if
+          ncell = ncell + 1
+          cell_key(ncell) = key(j)
+          cell_start(ncell) = j
+        end do
+        cell_start(ncell + 1) = nsmall + 1
+        do cell = 1, ncell
+          do p = cell_start(cell), cell_start(cell + 1) - 1
+            k = items(p)
+            call scan_cell(k, cell, .true., p)
+            call scan_key(k, cell_key(cell) + 1_i8)
+            call scan_key(k, cell_key(cell) + 2_i8**31 - 1_i8)
+            call scan_key(k, cell_key(cell) + 2_i8**31)
+            call scan_key(k, cell_key(cell) + 2_i8**31 + 1_i8)
+          end do
+        end do
+      end if
     end if
     do ib = 1, size(bigs)
       k = bigs(ib)
       do j = 1, t%n
-        if (j == k) cycle
+        if (j == k .or. .not. usable(j)) cycle
         if (.not. det%small(j) .and. j < k) cycle    ! big-big pairs once
         call consider(k, j)
       end do
@@ -298,6 +353,38 @@ contains
       end do
     end subroutine scan_cell
 
+    !> Sparse grid: scan the occupied cell of key kk, if any (binary search).
+    !> Keys of a column overflow (column -1 or 2^30) are never occupied.
+    subroutine scan_key(k, kk)
+      integer, intent(in) :: k
+      integer(i8), intent(in) :: kk
+      integer :: a, b, m
+      a = 1; b = ncell
+      do while (a <= b)
+        m = (a + b) / 2
+        if (cell_key(m) == kk) then
+          call scan_cell(k, m, .false., 0)
+          return
+        else if (cell_key(m) < kk) then
+          a = m + 1
+        else
+          b = m - 1
+        end if
+      end do
+    end subroutine scan_key
+
+    !> Cell index of a coordinate offset from the grid origin, clamped to [0, 2^30 - 1].
+    integer(i8) function cell_index(d)
+      real(wp), intent(in) :: d
+      real(wp) :: x
+      x = d / size_cell
+      if (x < 2.0_wp**30) then
+        cell_index = int(x, i8)
+      else
+        cell_index = 2_i8**30 - 1_i8
+      end if
+    end function cell_index
+
     !> Keep (a, b) if the see table allows it and the bounding shapes are close.
     subroutine consider(a, b)
       integer, intent(in) :: a, b
@@ -310,7 +397,8 @@ contains
         if ((c(1, a) - c(1, b))**2 + (c(2, a) - c(2, b))**2 > reach**2) return
       end if
       if (t%body(a) == t%body(b) .and. t%model(a) == t%model(b)) return
-      if (.not. (body_movable(a) .or. body_movable(b))) return
+      ! Bodies whose every dof is driven still interact (a cohesive interface
+      ! tested by driving both sides): LMGC90 keeps their contacts too.
       ! Orientation: the interaction type decides which side is the candidate;
       ! for two disks the lower index is the candidate unless only the reverse rule exists.
       icd = a; ian = b
@@ -343,14 +431,6 @@ contains
       call push_pair(icd, ian, inter, law, alert)
     end subroutine consider
 
-    logical function body_movable(k)
-      integer, intent(in) :: k
-      if (t%model(k) == bm_mesh) then
-        body_movable = mesh_movable(t%body(k))
-      else
-        body_movable = movable(t%body(k))
-      end if
-    end function body_movable
 
     subroutine push_pair(icd, ian, inter, law, alert)
       integer, intent(in) :: icd, ian, inter, law
@@ -380,6 +460,43 @@ contains
     b(1:size(a)) = a
   end function grow_int
 
+  !> Stable merge sort of (key, item) pairs by key.
+  subroutine sort_by_key(key, item)
+    integer(i8), intent(inout) :: key(:)
+    integer, intent(inout) :: item(:)
+    integer(i8), allocatable :: kt(:)
+    integer, allocatable :: it(:)
+    integer :: n, width, a, m, b, i, j, o
+    n = size(key)
+    allocate (kt(n), it(n))
+    width = 1
+    do while (width < n)
+      a = 1
+      do while (a <= n)
+        m = min(a + width, n + 1)
+        b = min(a + 2 * width, n + 1)
+        i = a; j = m; o = a
+        do while (i < m .and. j < b)
+          if (key(j) < key(i)) then
+            kt(o) = key(j); it(o) = item(j); j = j + 1
+          else
+            kt(o) = key(i); it(o) = item(i); i = i + 1
+          end if
+          o = o + 1
+        end do
+        do while (i < m)
+          kt(o) = key(i); it(o) = item(i); i = i + 1; o = o + 1
+        end do
+        do while (j < b)
+          kt(o) = key(j); it(o) = item(j); j = j + 1; o = o + 1
+        end do
+        a = b
+      end do
+      key = kt
+      item = it
+      width = 2 * width
+    end do
+  end subroutine sort_by_key
   !> Centre and bounding radius of contactor k: rigid shapes from their body's
   !> configuration q, mesh contactors from the node coordinates xn.
   subroutine placement(t, k, q, xn, centre, bound)
@@ -421,14 +538,18 @@ contains
   !> a contact (polygon pairs: up to two; a disk against a polyline: one per
   !> segment within the alert distance) with its local frame, gap, contact
   !> point, and lever arms (rigid sides) or nodes and weights (mesh sides).
-  subroutine detect_fine(det, t, q, c, xn)
+  !> With the step's free velocities (vq rigid, vm mesh nodes) and time step h,
+  !> a pair is also a contact when its predicted gap, gap + h min(0, u_n), is
+  !> within the alert distance: bodies approaching faster than alert / h are
+  !> caught before they overlap (doc/solver.md).
+  subroutine detect_fine(det, t, q, c, xn, vq, vm, h)
     type(detection_t), intent(in) :: det
     type(tactors_t), intent(in) :: t
     real(wp), intent(in) :: q(:, :)
     type(contacts_t), intent(inout) :: c
-    real(wp), intent(in), optional :: xn(:, :)
+    real(wp), intent(in), optional :: xn(:, :), vq(:, :), vm(:, :), h
     integer :: p, icd, ian, bcd, ban, iedge, j, nmax, seg, na, nb
-    real(wp) :: gap, normal(2), point(2), ccd(2), can(2), len, s, pcl(2)
+    real(wp) :: gap, normal(2), point(2), ccd(2), can(2), len, s, pcl(2), reach, alert
     real(wp), allocatable :: pcd(:, :), pan(:, :)
     integer :: mnode(4)
     real(wp) :: mwt(4)
@@ -455,32 +576,37 @@ contains
       ban = t%body(ian)
       mnode = 0
       mwt = 0.0_wp
+      ! Candidates are looked for up to reach; add keeps those whose gap, or
+      ! predicted gap, is within the alert distance.
+      alert = det%pair_alert(p)
+      reach = alert
+      if (present(h)) reach = alert + h * (speed(icd) + speed(ian))
       if (t%model(icd) == bm_rigid) ccd = tactor_center(t, icd, q(:, bcd))
       if (t%model(ian) == bm_rigid) can = tactor_center(t, ian, q(:, ban))
       select case (det%pair_inter(p))
       case (i_dkdkx)
         call dkdkx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
         len = t%radius(icd) * t%radius(ian) / (t%radius(icd) + t%radius(ian))
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+        call add(icd, ian, 0, 0)
       case (i_dkjcx)
         call dkjcx_geometry(ccd, t%radius(icd), can, q(3, ban), t%ax1(ian), t%ax2(ian), gap, normal, point)
         len = t%radius(icd)
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+        call add(icd, ian, 0, 0)
       case (i_dkkdx)
         call dkkdx_geometry(ccd, t%radius(icd), can, t%radius(ian), gap, normal, point)
         len = t%radius(icd)
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+        call add(icd, ian, 0, 0)
       case (i_dkplx)
         pan = tactor_vertices(t, ian, q(:, ban))
         call dkplx_geometry(ccd, t%radius(icd), pan, gap, normal, point, iedge)
         len = t%radius(icd)
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, iedge)
+        call add(icd, ian, 0, iedge)
       case (i_plplx)
         ! The rough pair's first contactor (lower index) is preferred as the
         ! reference face, i.e. the antagonist (as LMGC90 chooses).
         pcd = tactor_vertices(t, icd, q(:, bcd))
         pan = tactor_vertices(t, ian, q(:, ban))
-        call polygon_pair(pcd, pan, det%pair_alert(p), .false., pc)
+        call polygon_pair(pcd, pan, reach, .false., pc)
         len = pair_length(pc, t%bound(icd) * t%bound(ian) / (t%bound(icd) + t%bound(ian)))
         do j = 1, pc%n
           gap = pc%gap(j); normal = pc%normal; point = pc%point(:, j)
@@ -492,7 +618,7 @@ contains
         end do
       case (i_pljcx)
         pcd = tactor_vertices(t, icd, q(:, bcd))
-        call polygon_pair(wall_rectangle(can, q(3, ban), t%ax1(ian), t%ax2(ian)), pcd, det%pair_alert(p), &
+        call polygon_pair(wall_rectangle(can, q(3, ban), t%ax1(ian), t%ax2(ian)), pcd, reach, &
                           .true., pc)
         len = pair_length(pc, t%bound(icd))
         do j = 1, pc%n
@@ -504,7 +630,7 @@ contains
         ! the candidate's edge must face the segment (outward normals opposed).
         na = t%nodes(t%nfirst(icd)); nb = t%nodes(t%nfirst(icd) + 1)
         point = cl_point(t, icd, xn)
-        call point_polyline(point, xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), det%pair_alert(p), &
+        call point_polyline(point, xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), reach, alert, &
                             edge_normal(xn(:, na), xn(:, nb)), found, seg, s, gap, normal)
         if (found) then
           point = point - gap * normal        ! on the antagonist, as LMGC90 reports it
@@ -523,7 +649,7 @@ contains
                 t%ax2(ian) * normal
         len = 0.5_wp * norm2(xn(:, nb) - xn(:, na))
         call mesh_side(1, na, nb, t%apab(icd))
-        if (gap <= det%pair_alert(p)) call add(icd, ian, 0, 0)
+        call add(icd, ian, 0, 0)
       case (i_dkalp)
         ! LMGC90's DKALp: one contact per segment within the alert distance,
         ! normal from the segment's nearest point to the disk centre; the
@@ -533,7 +659,7 @@ contains
           na = t%nodes(t%nfirst(ian) + seg - 1); nb = t%nodes(t%nfirst(ian) + seg)
           call point_segment_distance(ccd, xn(:, na), xn(:, nb), s, gap, normal, point)
           gap = gap - t%radius(icd)
-          if (gap > det%pair_alert(p)) cycle
+          if (gap > reach) cycle
           call mesh_side(3, na, nb, s)
           call add(icd, ian, seg, seg)
         end do
@@ -542,7 +668,7 @@ contains
         pcd = tactor_vertices(t, icd, q(:, bcd))
         len = 0.0_wp
         do j = 1, size(pcd, 2)
-          call point_polyline(pcd(:, j), xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), det%pair_alert(p), &
+          call point_polyline(pcd(:, j), xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), reach, alert, &
                               vertex_normal(pcd, j), found, seg, s, gap, normal)
           if (.not. found) cycle
           point = pcd(:, j) - gap * normal
@@ -553,6 +679,40 @@ contains
     end do
 
   contains
+
+    !> Bound on the speed of contactor k's points over the step.
+    real(wp) function speed(k)
+      integer, intent(in) :: k
+      integer :: j
+      speed = 0.0_wp
+      if (t%model(k) == bm_mesh) then
+        do j = t%nfirst(k), t%nfirst(k + 1) - 1
+          speed = max(speed, norm2(vm(:, t%nodes(j))))
+        end do
+      else
+        speed = norm2(vq(1:2, t%body(k))) + abs(vq(3, t%body(k))) * (t%bound(k) + norm2(t%shift(:, k)))
+      end if
+    end function speed
+
+    !> Normal relative velocity (candidate minus antagonist) of the current
+    !> contact point over the step, from the free velocities.
+    real(wp) function approach(kcd, kan)
+      integer, intent(in) :: kcd, kan
+      approach = dot_product(point_velocity(kcd, 1) - point_velocity(kan, 3), normal)
+    end function approach
+
+    function point_velocity(k, first) result(v)
+      integer, intent(in) :: k, first
+      real(wp) :: v(2), r(2)
+      integer :: b
+      if (t%model(k) == bm_mesh) then
+        v = mwt(first) * vm(:, mnode(first)) + mwt(first + 1) * vm(:, mnode(first + 1))
+      else
+        b = t%body(k)
+        r = point - q(1:2, b)
+        v = vq(1:2, b) + vq(3, b) * [-r(2), r(1)]
+      end if
+    end function point_velocity
 
     !> Nodes and weights of a mesh side (first = 1: candidate, 3: antagonist):
     !> the point at (1 - s) x_a + s x_b.
@@ -569,6 +729,10 @@ contains
       integer, intent(in) :: kcd, kan, cdver, anseg
       integer :: k, b1, b2
       real(wp) :: tang(2), rcd(2), ran(2)
+      if (gap > alert) then
+        if (.not. present(h)) return
+        if (gap + h * min(0.0_wp, approach(kcd, kan)) > alert) return
+      end if
       c%n = c%n + 1
       k = c%n
       b1 = t%body(kcd); b2 = t%body(kan)

@@ -18,14 +18,15 @@ contains
 
   !> The segment of the polyline (nodes(k) -> nodes(k+1), coordinates xn) that
   !> point p faces, with the smallest |gap| among those whose gap is within
-  !> [-alert, alert]; facing also requires the candidate's outward normal
+  !> [-depth, reach]; facing also requires the candidate's outward normal
   !> cd_normal to be opposed to the segment's (no test if cd_normal = 0).
-  !> A point deeper than the alert distance behind a segment is not a contact:
-  !> in a mesh, points of one element lie behind the edges of its neighbours.
+  !> A point deeper than the alert distance (depth) behind a segment is not a
+  !> contact: in a mesh, points of one element lie behind the edges of its
+  !> neighbours.
   !> Returns the segment, the projection parameter s in [0, 1] along it, the
   !> gap and the segment's outward normal.
-  pure subroutine point_polyline(p, xn, nodes, alert, cd_normal, found, seg, s, gap, normal)
-    real(wp), intent(in) :: p(2), xn(:, :), alert, cd_normal(2)
+  pure subroutine point_polyline(p, xn, nodes, reach, depth, cd_normal, found, seg, s, gap, normal)
+    real(wp), intent(in) :: p(2), xn(:, :), reach, depth, cd_normal(2)
     integer, intent(in) :: nodes(:)
     logical, intent(out) :: found
     integer, intent(out) :: seg
@@ -45,7 +46,7 @@ contains
       nk = [-d(2), d(1)] / sqrt(len2)
       if (dot_product(nk, cd_normal) > 0.0_wp) cycle
       gk = dot_product(p - a, nk)
-      if (abs(gk) > alert) cycle
+      if (gk > reach .or. gk < -depth) cycle
       if (abs(gk) < best) then
         best = abs(gk)
         found = .true.

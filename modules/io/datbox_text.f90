@@ -9,6 +9,7 @@ module fracas_datbox_text
   use fracas_errors, only: input_error
   use fracas_deck, only: source_t
   use fracas_files, only: file_exists
+  use fracas_strings, only: lower, upper, itoa, rtoa
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, ieee_set_halting_mode, &
                                            ieee_set_flag
@@ -16,7 +17,7 @@ module fracas_datbox_text
   private
   public :: text_line_t, text_file_t, load_text, line_error, &
             field, is_blank, keyword_of, is_data, get_real, get_int, get_word, &
-            parse_real, parse_int, lower, upper, itoa, rtoa, cols, get_steps, edit_distance
+            parse_real, parse_int, lower, upper, itoa, rtoa, cols, get_steps, check_line_end, edit_distance
 
   !> One data line: its text (trailing blanks removed) and where it was read.
   type :: text_line_t
@@ -166,6 +167,7 @@ contains
     character(len=:), allocatable :: msg
     if (.not. parse_real(field(ln, c1, c2), x, msg)) &
       call line_error(ln, c1, 'expected a real number in '//cols(c1, c2)//' ('//what//'), '//found(ln, c1, msg))
+    call check_spill(ln, c1, c2, what)
   end function get_real
 
   !> An integer from columns c1..c2.
@@ -177,6 +179,7 @@ contains
     character(len=:), allocatable :: msg
     if (.not. parse_int(field(ln, c1, c2), i, msg)) &
       call line_error(ln, c1, 'expected an integer in '//cols(c1, c2)//' ('//what//'), '//found(ln, c1, msg))
+    call check_spill(ln, c1, c2, what)
   end function get_int
 
   !> The parser's "found ..." message, made explicit for a line that ends
@@ -210,7 +213,48 @@ contains
         call line_error(ln, c1, 'expected '//what//' in '//cols(c1, c2)//', found blanks')
       end if
     end if
+    if (len(w) > 0) call check_spill(ln, c1, c2, what)
   end function get_word
+
+  !> A value read from columns c1..c2 must end there: a non-blank in column c2
+  !> followed by a non-blank means the value runs on past its field (LMGC90
+  !> reads fixed columns: '1.0000000E-010' one column too far reads 0.1). A sign
+  !> in column c2+1 starts the next value: LMGC90 writes negative numbers of
+  !> adjacent fixed-width fields without a blank between them (GPV.OUT).
+  subroutine check_spill(ln, c1, c2, what)
+    type(text_line_t), intent(in) :: ln
+    integer, intent(in) :: c1, c2
+    character(len=*), intent(in) :: what
+    integer :: a, b
+    if (c2 >= len(ln%text)) return
+    if (ln%text(c2:c2) == ' ' .or. ln%text(c2 + 1:c2 + 1) == ' ') return
+    if (ln%text(c2 + 1:c2 + 1) == '-' .or. ln%text(c2 + 1:c2 + 1) == '+') return
+    a = c2
+    do while (a > 1)
+      if (ln%text(a - 1:a - 1) == ' ') exit
+      a = a - 1
+    end do
+    b = c2 + 1
+    do while (b < len(ln%text))
+      if (ln%text(b + 1:b + 1) == ' ') exit
+      b = b + 1
+    end do
+    call line_error(ln, c2 + 1, trim(what)//" in "//cols(c1, c2)//" runs on past its last column: found '"// &
+                    ln%text(a:b)//"' (values are read from fixed columns; align it to end at column "// &
+                    itoa(c2)//')')
+  end subroutine check_spill
+
+  !> Nothing may follow the last field of a line (columns after last_col blank).
+  subroutine check_line_end(ln, last_col, what)
+    type(text_line_t), intent(in) :: ln
+    integer, intent(in) :: last_col
+    character(len=*), intent(in) :: what
+    integer :: a
+    if (len_trim(ln%text) <= last_col) return
+    a = last_col + verify(ln%text(last_col + 1:), ' ')
+    call line_error(ln, a, "unexpected text after the last field of "//what//" (column "//itoa(last_col)// &
+                    "): '"//trim(ln%text(a:))//"'")
+  end subroutine check_line_end
 
   !> The '$steps' header of DOF and Vloc_Rloc files: the integer after
   !> '$steps' and the number after 'time='. Read by token, not by column,
@@ -388,42 +432,8 @@ contains
     is_digit = c >= '0' .and. c <= '9'
   end function is_digit
 
-  pure function lower(s) result(r)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: r
-    integer :: k
-    r = s
-    do k = 1, len(s)
-      if (r(k:k) >= 'A' .and. r(k:k) <= 'Z') r(k:k) = achar(iachar(r(k:k)) + 32)
-    end do
-  end function lower
 
-  pure function upper(s) result(r)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: r
-    integer :: k
-    r = s
-    do k = 1, len(s)
-      if (r(k:k) >= 'a' .and. r(k:k) <= 'z') r(k:k) = achar(iachar(r(k:k)) - 32)
-    end do
-  end function upper
 
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
-
-  !> Short text form of a real for messages.
-  function rtoa(x) result(s)
-    real(wp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    write (buf, '(es12.5)') x
-    s = trim(adjustl(buf))
-  end function rtoa
 
   !> Levenshtein distance (for "did you mean" suggestions).
   pure integer function edit_distance(a, b) result(d)

@@ -91,6 +91,7 @@ module fracas_deck
     character(len=30) :: name = ''       !< e.g. 'IQS_CLB', 'RST_CLB', 'IQS_MAC_CZM'
     real(wp), allocatable :: params(:)
     character(len=5), allocatable :: param_labels(:)  !< labels as written ('fric=' ...)
+    integer, allocatable :: param_lines(:), param_cols(:)  !< where each parameter was read
     type(source_t) :: src
   end type law_input_t
 
@@ -190,6 +191,17 @@ module fracas_deck
     real(wp) :: newton_tolerance = 1.0e-6_wp  !< relative residual of the Newton loop of nonlinear bodies
     integer :: newton_max_iterations = 20
     character(len=7) :: linear_solver = 'auto'  !< 'auto', 'dense', 'cholmod'
+    !> Velocity a driven dof has at the start of a step: its imposed value then
+    !> ('imposed', what LMGC90's RBDY2 does, see doc/solver.md), or the previous
+    !> end-of-step velocity, DOF.INI's at the first step ('initial').
+    character(len=7) :: driven_start = 'imposed'
+    !> Also make contacts of pairs whose predicted gap (gap + h min(0, u_n), free
+    !> velocities) is within the alert distance, not only their gap (doc/solver.md).
+    logical :: detection_approach = .true.
+    !> NLGS convergence measured as LMGC90 measures it, by a check pass after each
+    !> block of sweeps that evaluates without applying (yes), or by the changes of
+    !> the block's last sweep (no) (doc/solver.md).
+    logical :: nlgs_check_pass = .true.
   end type run_control_t
 
   !> One command of POSTPRO.DAT (LMGC90's post-processing deck): its name as

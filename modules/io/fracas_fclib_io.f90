@@ -10,6 +10,7 @@
 !> deviation stops with "FILE: what was found, what was expected".
 module fracas_fclib_io
   use fracas_kinds, only: wp
+  use fracas_strings, only: itoa
   use fracas_errors, only: input_error, fatal
   use fracas_files, only: file_exists
   use fracas_h5, only: hid_t, h5_open_file, h5_close_file, h5_exists, h5_read_dataset, h5_dataset_dims
@@ -240,11 +241,4 @@ contains
     end subroutine parse_line
   end subroutine fclib_read_reactions
 
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 end module fracas_fclib_io

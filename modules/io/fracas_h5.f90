@@ -39,6 +39,7 @@ module fracas_h5
                   H5P_CRT_ORDER_TRACKED_F, H5P_CRT_ORDER_INDEXED_F, &
                   h5lexists_f, h5ldelete_f, h5eset_auto_f
   use fracas_kinds, only: wp, ik
+  use fracas_strings, only: itoa
   use fracas_errors, only: fatal, warn
   use fracas_files, only: file_exists
   implicit none
@@ -1025,11 +1026,4 @@ contains
     end if
   end subroutine app_int1
 
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 end module fracas_h5

@@ -18,6 +18,7 @@
 !> killed run's file holds everything up to its last flush.
 module fracas_results_h5
   use fracas_kinds, only: wp, ik, i8
+  use fracas_strings, only: itoa
   use fracas_errors, only: fatal
   use fracas_files, only: file_exists
   use fracas_h5, only: hid_t, h5_series_t, h5_create_file, h5_close_file, h5_flush, &
@@ -407,11 +408,4 @@ contains
         z(1:3)//':'//z(4:5)
   end function timestamp
 
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 end module fracas_results_h5

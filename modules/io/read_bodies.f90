@@ -13,7 +13,7 @@ module fracas_read_bodies
   use fracas_kinds, only: wp
   use fracas_deck, only: body_input_t, tactor_input_t, material_input_t, element_input_t
   use fracas_errors, only: input_error
-  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, is_blank, &
+  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, is_blank, check_line_end, &
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, rtoa
   implicit none
   private
@@ -168,6 +168,7 @@ contains
     b%gyrd = get_real(ln, 56, 69, "gyration radius 'gyrd='")
     if (b%avrd < 0.0_wp) call line_error(ln, 35, 'avrd must be >= 0 (0: computed from the contactors), found '//rtoa(b%avrd))
     if (b%gyrd < 0.0_wp) call line_error(ln, 56, 'gyrd must be >= 0 (0: computed from the contactors), found '//rtoa(b%gyrd))
+    call check_line_end(ln, 69, 'the PLAIN line')
     if (present(materials)) then
       found = .false.
       do k = 1, size(materials)
@@ -203,6 +204,7 @@ contains
     b%coor(1) = get_real(ln, 35, 48, "reference x 'coo1='")
     b%coor(2) = get_real(ln, 56, 69, "reference y 'coo2='")
     b%coor(3) = get_real(ln, 77, 90, "reference angle 'coo3='")
+    call check_line_end(ln, 90, 'the NO3xx line')
   end subroutine read_node_line
 
   !> One contactor starting at line i (with its continuation lines); i ends
@@ -223,26 +225,31 @@ contains
       case ('DISKx', 'xKSID', 'DISKb')
         t%radius = get_real(ln, 35, 48, "radius 'byrd='")
         if (t%radius <= 0.0_wp) call line_error(ln, 35, t%kind//' radius must be > 0, found '//rtoa(t%radius))
+        call check_line_end(ln, 48, 'the '//t%kind//' line')
         if (t%kind == 'DISKb') then
           i = i + 1
           if (.not. is_data(tf, i)) call line_error(ln, 1, 'DISKb needs an offset line (coo1=, coo2=) after it')
           t%shift(1) = get_real(tf%lines(i), 35, 48, "offset x 'coo1='")
           t%shift(2) = get_real(tf%lines(i), 56, 69, "offset y 'coo2='")
+          call check_line_end(tf%lines(i), 69, 'the DISKb offset line')
         end if
       case ('JONCx')
         t%ax1 = get_real(ln, 35, 48, "half length 'ax1='")
         t%ax2 = get_real(ln, 56, 69, "half thickness 'ax2='")
         if (t%ax1 <= 0.0_wp) call line_error(ln, 35, 'JONCx half length ax1 must be > 0, found '//rtoa(t%ax1))
         if (t%ax2 <= 0.0_wp) call line_error(ln, 56, 'JONCx half thickness ax2 must be > 0, found '//rtoa(t%ax2))
+        call check_line_end(ln, 69, 'the JONCx line')
       case ('POLYG')
         nv = get_int(ln, 40, 46, "number of vertices 'nb_vertex='")
         if (nv < 3) call line_error(ln, 40, 'a POLYG needs at least 3 vertices, found nb_vertex = '//itoa(nv))
+        call check_line_end(ln, 46, 'the POLYG line')
         allocate (t%vertices(2, nv))
         do k = 1, nv
           if (.not. is_data(tf, i + k)) call line_error(ln, 40, 'POLYG declares '//itoa(nv)// &
                                                         ' vertices but only '//itoa(k - 1)//' vertex lines follow')
           t%vertices(1, k) = get_real(tf%lines(i + k), 35, 48, "vertex x 'coo1='")
           t%vertices(2, k) = get_real(tf%lines(i + k), 56, 69, "vertex y 'coo2='")
+          call check_line_end(tf%lines(i + k), 69, 'a POLYG vertex line')
         end do
         i = i + nv
         area = 0.0_wp
@@ -253,6 +260,7 @@ contains
         if (area < 0.0_wp) call line_error(ln, 2, 'POLYG vertices are in clockwise order (signed area ' &
                                            //rtoa(area)//'); list them counter-clockwise')
         if (area == 0.0_wp) call line_error(ln, 2, 'POLYG has zero area (all vertices on a line)')
+        call check_polygon_shape(tf, i0, t%vertices)
       case default
         call line_error(ln, 2, "unknown contactor type '"//trim(t%kind)//"' for RBDY2 (supported: " &
                         //supported_tactors//')')
@@ -261,6 +269,34 @@ contains
     i = i + 1
   end subroutine read_tactor
 
+  !> A POLYG must be convex (one contactor per convex part), its edges not
+  !> degenerate: each edge longer than what double precision resolves at the
+  !> polygon's extent (1e-3 extent / eps, as for body positions), so that edge
+  !> normals exist. Errors at the vertex line (line i0 + k for vertex k).
+  subroutine check_polygon_shape(tf, i0, v)
+    type(text_file_t), intent(in) :: tf
+    integer, intent(in) :: i0
+    real(wp), intent(in) :: v(:, :)
+    integer :: k, nv, kn, kp
+    real(wp) :: extent, edge, turn
+    nv = size(v, 2)
+    extent = maxval(abs(v))
+    do k = 1, nv
+      kn = mod(k, nv) + 1
+      edge = norm2(v(:, kn) - v(:, k))
+      if (.not. (edge > 1.0e3_wp * epsilon(1.0_wp) * extent)) call line_error(tf%lines(i0 + kn), 35, &
+        'POLYG vertex '//itoa(kn)//' is '//rtoa(edge)//' from vertex '//itoa(k)//' in a polygon of extent '// &
+        rtoa(extent)//': a degenerate edge (what double precision resolves at that extent is '// &
+        rtoa(1.0e3_wp * epsilon(1.0_wp) * extent)//')')
+    end do
+    do k = 1, nv
+      kp = mod(k + nv - 2, nv) + 1
+      kn = mod(k, nv) + 1
+      turn = (v(1, k) - v(1, kp)) * (v(2, kn) - v(2, k)) - (v(2, k) - v(2, kp)) * (v(1, kn) - v(1, k))
+      if (turn < 0.0_wp) call line_error(tf%lines(i0 + k), 35, 'POLYG is not convex at vertex '//itoa(k)// &
+        ' (a clockwise turn): split a non-convex shape into convex POLYG contactors of one body')
+    end do
+  end subroutine check_polygon_shape
   !> One meshed body from its '$bdyty' line (tf%lines(i)) to '$$$$$$'; i ends
   !> after it. Elements come first ($blmty), then nodes ($nodty), then
   !> contactors ($tacty), as LMGC90 writes them.

@@ -9,7 +9,7 @@ module fracas_read_bulk_behav
   use fracas_kinds, only: wp
   use fracas_deck, only: material_input_t
   use fracas_errors, only: input_error
-  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, &
+  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, check_line_end, &
                                 keyword_of, is_data, get_real, get_word, itoa, rtoa
   implicit none
   private
@@ -45,6 +45,7 @@ contains
         gravity(1) = get_real(tf%lines(i + 1), 25, 38, "gravity x 'grv1='")
         gravity(2) = get_real(tf%lines(i + 1), 46, 59, "gravity y 'grv2='")
         gravity(3) = get_real(tf%lines(i + 1), 67, 80, "gravity z 'grv3='")
+        call check_line_end(tf%lines(i + 1), 80, 'the gravity line')
         i = i + 2
       case ('behav')
         call need_next(tf, i, "'$behav' must be followed by a material line (nickname, law, Umas=)")
@@ -96,6 +97,9 @@ contains
     if (m%law == 'RIGID' .or. m%law == 'ELAS' .or. m%law == 'ELAS_PLAS' .or. field(ln, 41, 45) == 'Umas=') then
       m%density = get_real(ln, 46, 59, "density 'Umas='")
       if (m%density <= 0.0_wp) call line_error(ln, 46, "density 'Umas=' must be > 0, found "//rtoa(m%density))
+      if (m%density < tiny(1.0_wp)) call line_error(ln, 46, "density 'Umas=' "//rtoa(m%density)// &
+        ' is below the smallest normal double ('//rtoa(tiny(1.0_wp))//'): masses would underflow')
+      call check_line_end(ln, 59, 'the material line')
     end if
   end subroutine read_material
 

@@ -11,14 +11,17 @@ module fracas_read_command
   private
   public :: read_command, apply_command_setting, check_run_control, command_keywords
 
-  integer, parameter :: n_keys = 23
+  integer, parameter :: n_keys = 26
   character(len=21), parameter :: keys(n_keys) = [character(len=21) :: &
     'time_step', 'number_of_steps', 'final_time', 'theta', 'detection_frequency', &
     'nlgs_check', 'nlgs_tolerance', 'nlgs_relaxation', 'nlgs_sweeps_per_check', &
     'nlgs_max_checks', 'nlgs_order', 'nlgs_seed', 'output_dof_every', 'output_vtk_every', &
     'output_hdf5_every', 'progress_every', 'plane', 'newton_tolerance', 'newton_max_iterations', &
-    'linear_solver', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision']
+    'linear_solver', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision', 'driven_start', &
+    'detection_approach', 'nlgs_check_pass']
   integer, parameter :: k_time_step = 1, k_number_of_steps = 2, k_final_time = 3
+  !> Largest NLGS sweep budget of a step (sweeps per check x checks).
+  real(wp), parameter :: max_sweeps_per_step = 1.0e8_wp
 
 contains
 
@@ -57,7 +60,7 @@ contains
                          //itoa(max(seen(k_final_time), seen(k_number_of_steps)))//')')
       seen(key) = tf%lines(i)%src%line
     end do
-    call check_run_control(run, path, 1)
+    call check_run_control(run, path, 1, seen)
   end subroutine read_command
 
   !> Apply one "keyword=value" (or "keyword value") setting, e.g. from the
@@ -73,23 +76,49 @@ contains
 
   !> Checks that need the whole deck: time_step given, and number_of_steps or
   !> final_time. With final_time, number_of_steps = nint(final_time/time_step).
-  !> A missing keyword is reported at ORIGIN:LINE:1 (LINE 1 for a file, 0 for
-  !> command-line settings, where no line is shown).
-  subroutine check_run_control(run, origin, line)
+  !> Values each valid alone but unusable together are refused: a step count
+  !> past the largest integer, a sweep budget past 1e8 per step, a time step that is not a
+  !> normal number. A missing keyword is reported at ORIGIN:LINE:1 (LINE 1 for
+  !> a file, 0 for command-line settings, where no line is shown); a bad
+  !> combination at the line of the keyword (key_lines(k): line of keyword k).
+  subroutine check_run_control(run, origin, line, key_lines)
     type(run_control_t), intent(inout) :: run
     character(len=*), intent(in) :: origin
     integer, intent(in), optional :: line
+    integer, intent(in), optional :: key_lines(:)
     integer :: l
+    real(wp) :: nsteps
     l = 0
     if (present(line)) l = line
     if (run%time_step <= 0.0_wp) call input_error(origin, l, 1, &
                                                  "required keyword 'time_step' is missing (the time step, a real > 0)")
+    if (run%time_step < tiny(1.0_wp)) call input_error(origin, line_of(1), 1, 'time_step '//rtoa(run%time_step)// &
+      ' is below the smallest normal double: the time could not advance')
     if (run%final_time > 0.0_wp) then
-      run%number_of_steps = max(1, nint(run%final_time/run%time_step))
+      nsteps = run%final_time/run%time_step
+      if (.not. nsteps < real(huge(1), wp)) call input_error(origin, line_of(k_final_time), 1, &
+        'final_time / time_step = '//rtoa(nsteps)//' steps, more than the largest step count ('//itoa(huge(1))//')')
+      run%number_of_steps = max(1, nint(nsteps))
     else if (run%number_of_steps <= 0) then
       call input_error(origin, l, 1, "one of 'number_of_steps' (an integer >= 1) or 'final_time' (a real > 0) " &
                        //'is required')
     end if
+    if (real(run%nlgs_sweeps_per_check, wp)*real(run%nlgs_max_checks, wp) > max_sweeps_per_step) &
+      call input_error(origin, line_of(10), 1, 'nlgs_sweeps_per_check x nlgs_max_checks = '// &
+        rtoa(real(run%nlgs_sweeps_per_check, wp)*real(run%nlgs_max_checks, wp))// &
+        ' sweeps per step, more than '//rtoa(max_sweeps_per_step)//' (a step that does not converge would run '// &
+        'for hours; LMGC90 decks allow 1e3 to 1e5)')
+
+  contains
+
+    !> Line of keyword k if known, else the default line.
+    integer function line_of(k)
+      integer, intent(in) :: k
+      line_of = l
+      if (present(key_lines)) then
+        if (key_lines(k) > 0) line_of = key_lines(k)
+      end if
+    end function line_of
   end subroutine check_run_control
 
   integer function first_col(text)
@@ -151,8 +180,10 @@ contains
     integer, intent(in) :: key
     character(len=:), allocatable :: s
     select case (trim(keys(key)))
-    case ('time_step', 'final_time', 'nlgs_tolerance', 'newton_tolerance')
+    case ('time_step', 'final_time', 'newton_tolerance')
       s = 'a real > 0'
+    case ('nlgs_tolerance')
+      s = 'a real >= 2.2e-16 (a smaller tolerance cannot be met in double precision)'
     case ('theta')
       s = 'a real in [0.5, 1]'
     case ('nlgs_relaxation')
@@ -170,6 +201,10 @@ contains
       s = 'one of strain, stress'
     case ('linear_solver')
       s = 'one of auto, dense, cholmod'
+    case ('driven_start')
+      s = 'one of imposed, initial'
+    case ('detection_approach', 'nlgs_check_pass')
+      s = 'one of yes, no'
     case ('nlgs_unconverged')
       s = 'one of warn, fail, stop'
     case ('output_vtk_disks')
@@ -215,7 +250,7 @@ contains
         call bad()
       end select
     case ('nlgs_tolerance')
-      run%nlgs_tolerance = real_in(0.0_wp, huge(1.0_wp), .false.)
+      run%nlgs_tolerance = real_in(epsilon(1.0_wp), huge(1.0_wp), .true.)
     case ('nlgs_relaxation')
       run%nlgs_relaxation = real_in(0.0_wp, 2.0_wp, .false.)
     case ('nlgs_sweeps_per_check')
@@ -254,6 +289,27 @@ contains
       select case (lv)
       case ('auto', 'dense', 'cholmod')
         run%linear_solver = lv
+      case default
+        call bad()
+      end select
+    case ('driven_start')
+      select case (lv)
+      case ('imposed', 'initial')
+        run%driven_start = lv
+      case default
+        call bad()
+      end select
+    case ('detection_approach')
+      select case (lv)
+      case ('yes', 'no')
+        run%detection_approach = lv == 'yes'
+      case default
+        call bad()
+      end select
+    case ('nlgs_check_pass')
+      select case (lv)
+      case ('yes', 'no')
+        run%nlgs_check_pass = lv == 'yes'
       case default
         call bad()
       end select

@@ -10,7 +10,7 @@ module fracas_read_dof
   use fracas_kinds, only: wp
   use fracas_deck, only: dof_record_t, body_input_t
   use fracas_read_bodies, only: body_lookup_t, body_lookup, find_body, no_such_body
-  use fracas_datbox_text, only: text_file_t, load_text, line_error, field, &
+  use fracas_datbox_text, only: text_file_t, load_text, line_error, field, check_line_end, &
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, get_steps
   implicit none
   private
@@ -121,6 +121,8 @@ contains
         r%x(k) = get_real(lx, value_col(k), value_col(k) + 13, 'X('//itoa(k)//')')
         r%v(k) = get_real(lv, value_col(k), value_col(k) + 13, 'V('//itoa(k)//')')
       end do
+      call check_line_end(lx, 90, 'the X line')
+      call check_line_end(lv, 90, 'the V line')
     end associate
     i = i + 3
   end subroutine read_rigid_record

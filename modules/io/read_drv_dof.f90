@@ -9,10 +9,10 @@ module fracas_read_drv_dof
   use fracas_deck, only: driven_dof_input_t, body_input_t
   use fracas_read_bodies, only: body_lookup_t, body_lookup, find_body, no_such_body
   use fracas_errors, only: input_error
-  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, &
+  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, check_line_end, &
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, rtoa, &
                                 parse_real
-  use fracas_files, only: file_exists
+  use fracas_files, only: file_exists, dir_exists
   implicit none
   private
   public :: read_drv_dof, read_evolution_file
@@ -186,6 +186,8 @@ contains
       d%evolution_file = fname
       if (.not. file_exists(datbox_dir//'/'//fname)) &
         call line_error(ln, 25, "evolution file '"//datbox_dir//'/'//fname//"' not found")
+      if (dir_exists(datbox_dir//'/'//fname)) &
+        call line_error(ln, 25, "evolution file '"//datbox_dir//'/'//fname//"' is a directory, not a file")
       call read_evolution_file(datbox_dir//'/'//fname, d%evo_t, d%evo_v)
     else
       do k = 1, 6
@@ -197,6 +199,7 @@ contains
       d%phi = v(4)
       d%rampi = v(5)
       d%ramp = v(6)
+      call check_line_end(ln, value_col(6) + 13, 'the driven dof line')
     end if
   end subroutine read_dof_line
 

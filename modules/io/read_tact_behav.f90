@@ -10,7 +10,7 @@ module fracas_read_tact_behav
   use fracas_kinds, only: wp
   use fracas_deck, only: law_input_t, see_rule_input_t
   use fracas_errors, only: input_error
-  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, &
+  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, check_line_end, &
                                 is_blank, keyword_of, is_data, get_real, get_word, itoa, rtoa
   implicit none
   private
@@ -201,6 +201,7 @@ contains
           if (tf%lines(i)%text(1:1) == '+') then
             if (ns == 0) call line_error(tf%lines(i), 1, "a '+' global alert line must follow a $seety rule")
             see_rules(ns)%global_alert = get_real(tf%lines(i), 55, 68, 'global alert distance')
+            call check_line_end(tf%lines(i), 68, "the '+' global alert line")
             if (see_rules(ns)%global_alert < 0.0_wp) call line_error(tf%lines(i), 55, &
                                         'the global alert distance must be >= 0, found '//rtoa(see_rules(ns)%global_alert))
           else
@@ -289,7 +290,7 @@ contains
       call split_layout(specs(k)%layout, nlines, per)
       np = sum(per(1:nlines))
       desc = trim(law%name)//' takes '//itoa(nlines)//' parameter line(s): '//trim(specs(k)%layout)
-      allocate (law%params(np), law%param_labels(np))
+      allocate (law%params(np), law%param_labels(np), law%param_lines(np), law%param_cols(np))
       law%param_labels = ''
       ip = 0
       do l = 1, nlines
@@ -302,12 +303,17 @@ contains
           ip = ip + 1
           law%param_labels(ip) = field(pl, 41, 45)
           law%params(ip) = get_real(pl, 46, 59, "parameter '"//layout_word(specs(k)%layout, ip)//"' of "//trim(law%name))
+          law%param_lines(ip) = pl%src%line
+          law%param_cols(ip) = 46
           if (per(l) == 2) then
             ip = ip + 1
             law%param_labels(ip) = field(pl, 62, 66)
             law%params(ip) = get_real(pl, 67, 80, "parameter '"//layout_word(specs(k)%layout, ip)//"' of "// &
                                       trim(law%name))
+            law%param_lines(ip) = pl%src%line
+            law%param_cols(ip) = 67
           end if
+          call check_line_end(pl, merge(80, 59, per(l) == 2), 'a parameter line of '//trim(law%name))
         end associate
       end do
       i = i + max(nlines, 1)
@@ -328,6 +334,7 @@ contains
     r%antac = get_word(ln, 37, 41, 'antagonist contactor type (antac)')
     r%ancol = get_word(ln, 44, 48, 'antagonist colour (ancol)')
     r%alert = get_real(ln, 55, 68, 'alert distance')
+    call check_line_end(ln, 68, 'the see rule')
     if (r%alert < 0.0_wp) call line_error(ln, 55, 'the alert distance must be >= 0, found '//rtoa(r%alert))
   end subroutine read_rule
 end module fracas_read_tact_behav

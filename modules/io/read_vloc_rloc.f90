@@ -11,7 +11,7 @@ module fracas_read_vloc_rloc
                         i_plplx, i_pljcx, i_dkplx, i_clalp, i_dkalp, i_plalp
   use fracas_deck, only: contact_record_t, body_input_t, law_input_t
   use fracas_read_bodies, only: body_lookup_t, body_lookup, find_body, no_such_body
-  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, is_blank, &
+  use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, is_blank, check_line_end, &
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, get_steps
   implicit none
   private
@@ -179,6 +179,9 @@ contains
     r%vlt = get_real(tf%lines(j + 1), 35, 48, "tangential velocity 'vlt ='")
     r%vln = get_real(tf%lines(j + 1), 56, 69, "normal velocity 'vln ='")
     r%gap = get_real(tf%lines(j + 2), 35, 48, "gap 'gapTT'")
+    call check_line_end(tf%lines(j), 90, "the 'rlt/H' line")
+    call check_line_end(tf%lines(j + 1), 90, "the 'vlt =' line")
+    call check_line_end(tf%lines(j + 2), 48, "the 'gapTT' line")
     j = j + 3
     ! Optional normal and point.
     r%has_geometry = .false.
@@ -187,12 +190,14 @@ contains
         r%has_geometry = .true.
         r%normal(1) = get_real(tf%lines(j), 35, 48, "normal 'n(1)='")
         r%normal(2) = get_real(tf%lines(j), 56, 69, "normal 'n(2)='")
+        call check_line_end(tf%lines(j), 90, "the 'n(1)=' line")
         j = j + 1
         if (.not. is_data(tf, j)) call line_error(tf%lines(j - 1), 30, "expected the 'coo1=' line after 'n(1)='")
         if (field(tf%lines(j), 30, 34) /= 'coo1=') call line_error(tf%lines(j), 30, &
                                                                  "expected the 'coo1=' line after 'n(1)='")
         r%coor(1) = get_real(tf%lines(j), 35, 48, "contact point 'coo1='")
         r%coor(2) = get_real(tf%lines(j), 56, 69, "contact point 'coo2='")
+        call check_line_end(tf%lines(j), 90, "the 'coo1=' line")
         j = j + 1
       end if
     end if

@@ -3,6 +3,7 @@
 !> Before the exit, registered clean-up (e.g. marking partial output) runs.
 module fracas_errors
   use, intrinsic :: iso_fortran_env, only: error_unit
+  use fracas_strings, only: itoa
   implicit none
   private
   public :: fatal, input_error, warn, set_cleanup, cleanup_proc, stop_run, itoa
@@ -76,12 +77,4 @@ contains
     end if
   end subroutine run_cleanup
 
-  !> Decimal text of an integer (for messages).
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 end module fracas_errors

@@ -4,16 +4,19 @@
 !>   call factor_build(f, a, method [, ordering])  ! method 'auto' | 'dense' | 'cholmod' | 'umfpack'
 !>   call factor_solve(f, b)                       ! b(n) or b(n, nrhs), overwritten by A^-1 b
 !>   call factor_update(f, a)                      ! new values, same pattern: numeric only
-!>   print *, factor_method_name(f)                ! e.g. 'CHOLMOD supernodal LL^T, METIS ordering, ...'
+!>   print *, factor_method_name(f)                ! e.g. 'CHOLMOD simplicial LL^T, METIS ordering, n = .., nnz(L) = ..'
+!>   nnz = factor_nnz(f)                           ! stored entries of the factors (memory: 8 bytes each)
 !>   call factor_free(f)
 !>   call dense_spd_inverse(c [, ok])              ! c := c^-1 in place (small SPD blocks)
 !>
 !> Methods:
 !> * 'dense': LAPACK Cholesky (dpotrf/dpotrs) of the dense copy (upper triangle read).
-!> * 'cholmod': CHOLMOD sparse Cholesky (upper triangle read), supernodal or simplicial
-!>   as CHOLMOD judges (both LL^T), with a fill-reducing ordering: `ordering` = 'best'
-!>   (default: METIS and AMD both tried, the one with less fill kept), 'metis' (AMD if
-!>   METIS fails) or 'amd'.
+!> * 'cholmod': CHOLMOD sparse Cholesky LL^T (upper triangle read), simplicial, or
+!>   supernodal when the factorization costs more than 300 flops per entry of L (3D
+!>   meshes; 2D meshes up to ~2e5 unknowns stay simplicial, which is faster there with
+!>   the reference BLAS), with a fill-reducing ordering: `ordering` = 'best' (default:
+!>   METIS and AMD both tried, the one with less fill kept), 'metis' (AMD if METIS
+!>   fails) or 'amd'.
 !> * 'umfpack': UMFPACK sparse LU (any nonsingular matrix; ordering as above, 'best'
 !>   meaning UMFPACK's own choice).
 !> * 'auto': dense for n <= auto_dense_max_n (measured: doc/benchmarks.md, "Linear solvers
@@ -35,11 +38,16 @@ module fracas_linear_solver
   use fracas_sparse, only: sparse_t, sparse_to_dense, sparse_asymmetry
   implicit none
   private
-  public :: factor_t, factor_build, factor_update, factor_solve, factor_method_name, factor_free, &
-            dense_spd_inverse, auto_dense_max_n
+  public :: factor_t, factor_build, factor_update, factor_solve, factor_method_name, factor_nnz, &
+            factor_free, dense_spd_inverse, auto_dense_max_n
 
-  !> 'auto' uses dense LAPACK Cholesky up to this size, CHOLMOD above (measured crossover).
-  integer, parameter :: auto_dense_max_n = 200
+  !> 'auto' uses dense LAPACK Cholesky up to this size, CHOLMOD above. Measured with
+  !> Debian's reference BLAS (doc/benchmarks.md, "Linear solvers for meshed bodies"):
+  !> CHOLMOD solves faster from n ~ 18, refactorizes faster from n ~ 32 and factorizes
+  !> faster (ordering included) from n ~ 72-128; solves and refactorizations dominate.
+  integer, parameter :: auto_dense_max_n = 32
+  !> Largest n for a dense factorization (8 n^2 bytes: 8.6 GB).
+  integer, parameter :: dense_limit_n = 32768
   !> Relative asymmetry above which 'auto' takes LU instead of Cholesky.
   real(wp), parameter :: symmetry_tolerance = 1.0e-10_wp
 
@@ -101,6 +109,10 @@ module fracas_linear_solver
       character(kind=c_char), intent(out) :: buf(*)
       integer(c_int), value :: len
     end subroutine fss_message
+    real(c_double) function fss_factor_nnz(handle) bind(C, name='fss_factor_nnz')
+      import :: c_ptr, c_double
+      type(c_ptr), value :: handle
+    end function fss_factor_nnz
     subroutine fss_free(handle) bind(C, name='fss_free')
       import :: c_ptr
       type(c_ptr), intent(inout) :: handle
@@ -288,6 +300,22 @@ contains
     end select
   end function factor_method_name
 
+  !> Entries of the factors: n(n+1)/2 (dense Cholesky), n^2 (dense LU), nnz(L) (CHOLMOD),
+  !> nnz(L) + nnz(U) - n (UMFPACK).
+  real(wp) function factor_nnz(f)
+    type(factor_t), intent(in) :: f
+    select case (f%kind)
+    case (kind_dense_cholesky)
+      factor_nnz = 0.5_wp * real(f%n, wp) * real(f%n + 1, wp)
+    case (kind_dense_lu)
+      factor_nnz = real(f%n, wp)**2
+    case (kind_cholmod, kind_umfpack)
+      factor_nnz = real(fss_factor_nnz(f%handle), wp)
+    case default
+      factor_nnz = 0.0_wp
+    end select
+  end function factor_nnz
+
   subroutine factor_free(f)
     type(factor_t), intent(inout) :: f
     if (c_associated(f%handle)) call fss_free(f%handle)
@@ -371,6 +399,7 @@ contains
     type(sparse_t), intent(in) :: a
     character(len=:), allocatable, intent(out) :: why
     integer :: info
+    call check_dense_size(a%n)
     call sparse_to_dense(a, f%dense)
     f%kind = kind_dense_cholesky
     why = ''
@@ -385,6 +414,7 @@ contains
     type(sparse_t), intent(in) :: a
     character(len=:), allocatable, intent(out) :: why
     integer :: info
+    call check_dense_size(a%n)
     call sparse_to_dense(a, f%dense)
     if (allocated(f%ipiv)) deallocate (f%ipiv)
     allocate (f%ipiv(a%n))
@@ -395,6 +425,14 @@ contains
     if (info > 0) why = 'LAPACK dgetrf (dense LU): matrix singular (zero pivot at column '// &
                         itoa(info)//' of '//itoa(a%n)//')'
   end subroutine dense_lu
+
+  !> A dense copy of n x n doubles above 8 GB is a mistake, not a plan: say so.
+  subroutine check_dense_size(n)
+    integer, intent(in) :: n
+    if (n > dense_limit_n) call fatal('factor_build: a dense factorization of n = '//itoa(n)// &
+                                      ' unknowns needs '//itoa(int(8.0_wp * real(n, wp)**2 / 1.0e9_wp))// &
+                                      ' GB; use the method cholmod (or auto)')
+  end subroutine check_dense_size
 
   !> Symbolic analysis and numeric factorization through the C shim (CHOLMOD or UMFPACK),
   !> replacing whatever f held.

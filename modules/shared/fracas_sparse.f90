@@ -120,6 +120,7 @@ contains
     integer :: k
     if (size(map) /= size(vals)) &
       call fatal('sparse_refill: '//itoa(size(vals))//' values for a map of '//itoa(size(map))//' triplets')
+    if (.not. allocated(a%val)) call fatal('sparse_refill: the matrix was never assembled (sparse_from_triplets first)')
     a%val = 0.0_wp
     do k = 1, size(map)
       a%val(map(k)) = a%val(map(k)) + vals(k)

@@ -83,6 +83,12 @@ static int cholmod_analyze_ordered(fss_t *f, int ordering) {
   cholmod_common *c = &f->common;
   c->postorder = 1;
   c->supernodal = CHOLMOD_AUTO;
+  /* Supernodal only when the factorization does at least 300 flops per entry of L
+   * (CHOLMOD's default: 40). Measured with Debian's reference BLAS on 2D lattices
+   * (doc/benchmarks.md §4): simplicial refactorizes 2-3 times faster up to n ~ 1e4 and
+   * solves faster up to 2e5 (2D: 37 flops/entry at n = 800, 281 at n = 2e5); 3D meshes
+   * pass 300 early and get the supernodal (BLAS-3) factorization. */
+  c->supernodal_switch = 300;
   c->final_ll = 1; /* simplicial LL^T too: a non-positive pivot stops it, as in dpotrf */
   if (ordering == FSS_ORDER_AMD) {
     c->nmethods = 1;

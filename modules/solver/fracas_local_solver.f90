@@ -5,7 +5,7 @@ module fracas_local_solver
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw
   implicit none
   private
-  public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d, gs_sweep_2d_packed, gs_sweep_mesh
+  public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d_packed, gs_sweep_mesh
   public :: pk_size
 
   !> Doubles per contact record of gs_sweep_2d_packed.
@@ -88,113 +88,27 @@ contains
     f2 = (rt - pt)**2 + (rn - pn)**2
   end function natural_map_2d
 
-  !> One nonlinear Gauss–Seidel sweep over 2D rigid contacts, exchanging with
-  !> the body velocities v (3,nb) after each contact (the hot loop of NLGS).
-  !> body(1:2,k): candidate and antagonist bodies; geo(1:6,k): n1, n2 and the
-  !> lever arms (cd t, cd n, an t, an n); w(4,k) the Delassus block (tt, tn, nt,
-  !> nn) and wi(6,k) the inverse_block of the block the local solver uses;
-  !> shift(2,k) the law shift; r(2,k) total impulses, updated in place. A
-  !> cohesive contact solves for its contact part r_c with W' = A W and
-  !> u~free' = A (u~free + W a), then r = r_c + a + K u~ (coh(12,k) = A, W', a, K).
-  !> With check, the sums of LMGC90's norms are returned: sums(1) sum du^2,
-  !> (2) sum du^2 |rbar|^2, (3) sum rbar.du, (4) sum W r.r, (5) sum |W r|^2,
-  !> (6) contacts with rbar /= 0; maxes(1) max du^2, (2) max du^2 |rbar|^2.
-  subroutine gs_sweep_2d(order, active, cohesive, coh, body, geo, w, wi, shift, mu, r, status, v, inv_mass, &
-                         relax, check, sums, maxes)
-    integer, intent(in), contiguous :: order(:), body(:, :)
-    logical, intent(in), contiguous :: active(:), cohesive(:)
-    real(wp), intent(in), contiguous :: coh(:, :)
-    logical, intent(in) :: check
-    real(wp), intent(in), contiguous :: geo(:, :), w(:, :), wi(:, :), shift(:, :), mu(:), inv_mass(:, :)
-    real(wp), intent(in) :: relax
-    real(wp), intent(inout), contiguous :: r(:, :), v(:, :)
-    integer, intent(inout), contiguous :: status(:)
-    real(wp), intent(out) :: sums(6), maxes(2)
-    integer :: ii, k, a, o, st
-    real(wp) :: n1, n2, l1, l2, l3, l4, wtt, wtn, wnt, wnn, dvx, dvy, ut, un, rt0, rn0, rt, rn
-    real(wp) :: uft, ufn, drt, drn, px, py, dut, dun, du2, rbt, rbn, rb2, xt, xn, rct, rcn
-    sums = 0.0_wp
-    maxes = 0.0_wp
-    do ii = 1, size(order)
-      k = order(ii)
-      if (.not. active(k)) cycle
-      a = body(1, k); o = body(2, k)
-      n1 = geo(1, k); n2 = geo(2, k)
-      l1 = geo(3, k); l2 = geo(4, k); l3 = geo(5, k); l4 = geo(6, k)
-      wtt = w(1, k); wtn = w(2, k); wnt = w(3, k); wnn = w(4, k)
-      dvx = v(1, a) - v(1, o)
-      dvy = v(2, a) - v(2, o)
-      ut = dvx * n2 - dvy * n1 + v(3, a) * l1 - v(3, o) * l3
-      un = dvx * n1 + dvy * n2 + v(3, a) * l2 - v(3, o) * l4
-      rt0 = r(1, k); rn0 = r(2, k)
-      uft = ut - (wtt * rt0 + wtn * rn0) + shift(1, k)
-      ufn = un - (wnt * rt0 + wnn * rn0) + shift(2, k)
-      if (cohesive(k)) then
-        xt = uft + wtt * coh(9, k) + wtn * coh(10, k)
-        xn = ufn + wnt * coh(9, k) + wnn * coh(10, k)
-        uft = coh(1, k) * xt + coh(2, k) * xn
-        ufn = coh(3, k) * xt + coh(4, k) * xn
-        call coulomb_2d_inv(uft, ufn, wi(:, k), mu(k), rct, rcn, st)
-        xt = uft + coh(5, k) * rct + coh(6, k) * rcn     ! u~ at the end of the step
-        xn = ufn + coh(7, k) * rct + coh(8, k) * rcn
-        rt = rct + coh(9, k) + coh(11, k) * xt
-        rn = rcn + coh(10, k) + coh(12, k) * xn
-      else
-        call coulomb_2d_inv(uft, ufn, wi(:, k), mu(k), rt, rn, st)
-      end if
-      status(k) = st
-      if (check) then
-        ! du = W (r_old - r_new), rbar = mean reaction (LMGC90's check quantities)
-        dut = wtt * (rt0 - rt) + wtn * (rn0 - rn)
-        dun = wnt * (rt0 - rt) + wnn * (rn0 - rn)
-        rbt = 0.5_wp * (rt0 + rt); rbn = 0.5_wp * (rn0 + rn)
-        if (rbt /= 0.0_wp .or. rbn /= 0.0_wp) then
-          du2 = dut**2 + dun**2
-          rb2 = rbt**2 + rbn**2
-          sums(1) = sums(1) + du2
-          sums(2) = sums(2) + du2 * rb2
-          sums(3) = sums(3) + rbt * dut + rbn * dun
-          sums(4) = sums(4) + 0.5_wp * ((wtt * rt0 + wtn * rn0) * rt0 + (wnt * rt0 + wnn * rn0) * rn0 + &
-                                        (wtt * rt + wtn * rn) * rt + (wnt * rt + wnn * rn) * rn)
-          sums(5) = sums(5) + 0.5_wp * ((wtt * rt0 + wtn * rn0)**2 + (wnt * rt0 + wnn * rn0)**2 + &
-                                        (wtt * rt + wtn * rn)**2 + (wnt * rt + wnn * rn)**2)
-          sums(6) = sums(6) + 1.0_wp
-          maxes(1) = max(maxes(1), du2)
-          maxes(2) = max(maxes(2), du2 * rb2)
-        end if
-      end if
-      if (relax /= 1.0_wp) then
-        rt = relax * rt + (1.0_wp - relax) * rt0
-        rn = relax * rn + (1.0_wp - relax) * rn0
-      end if
-      r(1, k) = rt; r(2, k) = rn
-      drt = rt - rt0; drn = rn - rn0
-      if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
-      px = drt * n2 + drn * n1
-      py = -drt * n1 + drn * n2
-      v(1, a) = v(1, a) + inv_mass(1, a) * px
-      v(2, a) = v(2, a) + inv_mass(2, a) * py
-      v(3, a) = v(3, a) + inv_mass(3, a) * (drt * l1 + drn * l2)
-      v(1, o) = v(1, o) - inv_mass(1, o) * px
-      v(2, o) = v(2, o) - inv_mass(2, o) * py
-      v(3, o) = v(3, o) - inv_mass(3, o) * (drt * l3 + drn * l4)
-    end do
-  end subroutine gs_sweep_2d
-
-  !> The scene's NLGS sweep on packed data: the same arithmetic, in the same order,
-  !> as gs_sweep_2d (so the iterates are bit-identical), with the memory layout of
-  !> the hot loop changed:
+  !> One nonlinear Gauss–Seidel sweep over 2D rigid contacts (the hot loop of the
+  !> scene's NLGS), exchanging with the body velocities after each contact, on
+  !> packed data:
   !>   cr(pk_size, n) one record per contact, in sweep order (only the contacts the
-  !>     law leaves active): 1:2 n, 3:6 lever arms, 7:10 W (tt, tn, nt, nn),
-  !>     11:16 inverse_block of the W the local solver uses, 17:18 law shift, 19 mu;
+  !>     law leaves active): 1:2 n, 3:6 lever arms (cd t, cd n, an t, an n), 7:10 W
+  !>     (tt, tn, nt, nn), 11:16 inverse_block of the W the local solver uses,
+  !>     17:18 law shift, 19 mu; r(2, n) total impulses, updated in place;
   !>   cb(2, n) the two bodies as indices in bv; icoh(n) the column of coh of a
-  !>     cohesive contact (0: none; see gs_sweep_2d for coh), any_coh: some is;
+  !>     cohesive contact (0: none), any_coh: some is. A cohesive contact solves for
+  !>     its contact part r_c with W' = A W and u~free' = A (u~free + W a), then
+  !>     r = r_c + a + K u~ (coh(12,k) = A, W', a, K);
   !>   bv(6, *) one record per body: v (3) and the inverse mass (3);
   !>   r(2, n), status(n) in sweep order.
-  !> Statuses are written, and the norm sums accumulated, only in check sweeps
-  !> (the last sweep of a solve is always one). Sweeps without check and without
-  !> cohesive contacts run a lean loop (sweep_plain, the local solver inlined).
-  subroutine gs_sweep_2d_packed(n, cb, cr, icoh, any_coh, coh, r, status, bv, relax, check, sums, maxes)
+  !> With check, statuses are written and the norm sums accumulated: sums(1) sum
+  !> du^2, (2) sum du^2 |rbar|^2, (3) sum rbar.du, (4) sum W r.r, (5) sum |W r|^2,
+  !> (6) contacts with rbar /= 0; maxes(1) max du^2, (2) max du^2 |rbar|^2
+  !> (fracas_lmgc_norms); with evaluate_only too, nothing is applied: LMGC90's
+  !> check pass, every contact's local solution computed from the current state and
+  !> compared with its current reaction. Sweeps without check and without cohesive
+  !> contacts run a lean loop (sweep_plain, the local solver inlined).
+  subroutine gs_sweep_2d_packed(n, cb, cr, icoh, any_coh, coh, r, status, bv, relax, check, sums, maxes, evaluate_only)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
     real(wp), intent(in) :: cr(pk_size, n)
@@ -205,8 +119,12 @@ contains
     real(wp), intent(in) :: relax
     logical, intent(in) :: check
     real(wp), intent(out) :: sums(6), maxes(2)
+    logical, intent(in), optional :: evaluate_only
+    logical :: evaluate
+    evaluate = .false.
+    if (present(evaluate_only)) evaluate = evaluate_only
     if (check .or. any_coh) then
-      call sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes)
+      call sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes, evaluate)
     else
       sums = 0.0_wp
       maxes = 0.0_wp
@@ -270,9 +188,9 @@ contains
     end do
   end subroutine sweep_plain
 
-  !> Any sweep: cohesive contacts, and with check the statuses and LMGC90's norm
-  !> sums (see gs_sweep_2d). gs_sweep_2d's loop without its indirections.
-  subroutine sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes)
+  !> Any sweep with cohesive contacts, or a check pass (statuses and LMGC90's
+  !> norm sums, nothing applied).
+  subroutine sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes, evaluate_only)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
     real(wp), intent(in) :: cr(pk_size, n)
@@ -280,7 +198,7 @@ contains
     real(wp), intent(inout) :: r(2, n), bv(6, *)
     integer, intent(inout) :: status(n)
     real(wp), intent(in) :: relax
-    logical, intent(in) :: check
+    logical, intent(in) :: check, evaluate_only
     real(wp), intent(out) :: sums(6), maxes(2)
     integer :: k, a, o
     real(wp) :: n1, n2, dvx, dvy, ut, un, rt0, rn0, rt, rn, drt, drn, px, py
@@ -295,6 +213,7 @@ contains
       un = dvx * n1 + dvy * n2 + bv(3, a) * cr(4, k) - bv(3, o) * cr(6, k)
       rt0 = r(1, k); rn0 = r(2, k)
       call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
+      if (evaluate_only) cycle        ! a check pass evaluates, it does not apply
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
@@ -312,7 +231,7 @@ contains
   !> One contact's update from its current relative velocity (ut, un), whatever
   !> bodies it joins: free velocity u - W r0 + shift, exact local solution (a
   !> cohesive contact j > 0 solves for its contact part with W' and adds the
-  !> cohesive impulse, see gs_sweep_2d), with check its status and LMGC90's norm
+  !> cohesive impulse, see gs_sweep_2d_packed), with check its status and LMGC90's norm
   !> sums, then relaxation. cr is the contact's packed record.
   pure subroutine local_step(ut, un, cr, j, coh, rt0, rn0, relax, check, rt, rn, status, sums, maxes)
     real(wp), intent(in) :: ut, un, cr(pk_size), rt0, rn0, relax
@@ -379,9 +298,9 @@ contains
   !>     m x 2 block G = C H^T stored by rows (2, m) (m = gm(s, k) contact dofs
   !>     of its body, starting in mv at mfirst(s, k)), so an impulse change dr
   !>     moves mv by G dr.
-  !> Statuses and norm sums as gs_sweep_2d_packed (check).
+  !> Statuses and norm sums as gs_sweep_2d_packed: a check pass applies nothing.
   subroutine gs_sweep_mesh(n, cr, side, gm, mfirst, slot, wt, icoh, coh, r, status, bv, mv, gmat, relax, check, &
-                           sums, maxes)
+                           sums, maxes, evaluate_only)
     integer, intent(in) :: n
     real(wp), intent(in) :: cr(pk_size, n), wt(4, n), gmat(*)
     integer, intent(in) :: side(4, n), gm(2, n), mfirst(2, n), slot(4, n), icoh(n)
@@ -389,7 +308,7 @@ contains
     real(wp), intent(inout) :: r(2, n), bv(6, *), mv(*)
     integer, intent(inout) :: status(n)
     real(wp), intent(in) :: relax
-    logical, intent(in) :: check
+    logical, intent(in) :: check, evaluate_only
     real(wp), intent(out) :: sums(6), maxes(2)
     integer :: k, s, i, a, m, g0, v0
     real(wp) :: n1, n2, vx, vy, rot, ut, un, rt0, rn0, rt, rn, drt, drn, px, py, sgn
@@ -429,6 +348,7 @@ contains
       end if
       rt0 = r(1, k); rn0 = r(2, k)
       call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
+      if (evaluate_only) cycle        ! a check pass evaluates, it does not apply
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle

@@ -3,23 +3,25 @@
 !> each contact sees its neighbours' latest reactions. Contacts between two
 !> rigid bodies run in the packed rigid kernel; contacts with a meshed side in
 !> the mesh kernel, on the velocities of the meshed bodies' contact dofs
-!> (doc/architecture.md); both in one sweep. Convergence is measured
-!> with LMGC90's normalised norms (Quad, Maxm, QM/16), computed inside the last
-!> sweep of each block, and after convergence with the FCLib natural map.
+!> (doc/architecture.md); both in one sweep. Convergence is measured as LMGC90
+!> does: after each block of sweeps, a check pass evaluates every contact's
+!> update without applying it, and LMGC90's normalised norms (Quad, Maxm,
+!> QM/16) of those updates decide; after convergence the FCLib natural map is
+!> computed too.
 module fracas_nlgs
   use fracas_kinds, only: wp, i8
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw, st_cnctc, st_cstck, st_cslfw, st_cslbw, &
                         bm_rigid, bm_mesh
   use fracas_random, only: rng_t, rng_seed, rng_permute
   use fracas_rbdy2, only: rbdy2_t
-  use fracas_mailx, only: mailx_t, mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, &
+  use fracas_mailx, only: mailx_t, mailx_require_compliance, mailx_compliance_columns, &
                           mailx_contact_dofs, &
                           mailx_velocity_from_impulses
   use fracas_contacts, only: contacts_t
   use fracas_contact_laws, only: law_t, law_local_problem, law_czm
   use fracas_czm, only: czm_beta_update, czm_stored_energy
   use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
-  use fracas_errors, only: fatal
+  use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
   implicit none
   private
   public :: nlgs_settings_t, nlgs_report_t, nlgs_t, nlgs_init, nlgs_prepare, nlgs_solve, &
@@ -31,6 +33,7 @@ module fracas_nlgs
     real(wp) :: relax = 1.0_wp
     integer :: sweeps_per_check = 50
     integer :: max_checks = 400
+    logical :: check_pass = .true.    !< LMGC90's check pass (else the change of the last sweep)
     character(len=8) :: order = 'stored'
     integer :: seed = 1
   end type nlgs_settings_t
@@ -79,6 +82,11 @@ module fracas_nlgs
     real(wp), allocatable :: gc(:, :), gwt(:, :), gr(:, :)
     integer, allocatable :: moff(:)
     real(wp), allocatable :: mv(:)
+    ! The step's active nodes of each meshed body: a dense body's are all its
+    ! nodes, a large body's the nodes its contacts touch (its cached compliance
+    ! may cover more); anodes(abase(b)+1 .. abase(b)+nact(b)), aslot(node) the
+    ! node's place in its body's list (0: none).
+    integer, allocatable :: nact(:), abase(:), anodes(:), aslot(:)
   end type nlgs_t
 
 contains
@@ -244,7 +252,7 @@ contains
           ht_g = 0.0_wp; hn_g = 0.0_wp
           do i = 2 * s - 1, 2 * s
             wgt = sgn * c%mwt(i, k)
-            sl = 2 * m%cslot(c%mnode(i, k)) - 1
+            sl = 2 * solver%aslot(c%mnode(i, k)) - 1
             do j = 1, 2
               ht_g(j) = ht_g(j) + wgt * (t(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
                                          t(2) * solver%gmat(g0 + 2 * sl + j))
@@ -280,7 +288,7 @@ contains
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(in) :: c
     type(mailx_t), intent(inout) :: m
-    integer :: k, s, i, nnod, total, mb, g0, node
+    integer :: k, s, i, j, nnod, total, mb, g0, node, b, na
     integer, allocatable :: nodes(:)
     real(wp), allocatable :: cols(:, :)
     real(wp) :: t(2), nrm(2), sgn, wgt
@@ -294,6 +302,52 @@ contains
       end do
     end do
     call mailx_require_compliance(m, nodes(1:nnod))
+    ! Active nodes per body (see nlgs_t), those of the last call cleared first.
+    call clear_active(solver)
+    if (allocated(solver%aslot)) then
+      if (size(solver%aslot) /= m%nnodes) deallocate (solver%aslot, solver%nact, solver%abase)
+    end if
+    if (.not. allocated(solver%aslot)) then
+      allocate (solver%aslot(m%nnodes), solver%nact(m%n), solver%abase(m%n))
+      solver%aslot = 0
+    end if
+    solver%nact = 0
+    do k = 1, nnod
+      b = m%node_body(nodes(k))
+      if (m%dense(b)) then
+        solver%nact(b) = m%node_first(b + 1) - m%node_first(b)
+      else if (solver%aslot(nodes(k)) == 0) then
+        solver%nact(b) = solver%nact(b) + 1
+        solver%aslot(nodes(k)) = -1          ! counted, placed below
+      end if
+    end do
+    na = 0
+    do b = 1, m%n
+      solver%abase(b) = na
+      na = na + solver%nact(b)
+    end do
+    if (allocated(solver%anodes)) then
+      if (size(solver%anodes) < na) deallocate (solver%anodes)
+    end if
+    if (.not. allocated(solver%anodes)) allocate (solver%anodes(max(na, 16)))
+    solver%nact = 0
+    do k = 1, nnod
+      node = nodes(k)
+      b = m%node_body(node)
+      if (solver%aslot(node) > 0) cycle
+      if (m%dense(b)) then
+        if (solver%nact(b) > 0) cycle
+        do j = m%node_first(b), m%node_first(b + 1) - 1
+          solver%nact(b) = solver%nact(b) + 1
+          solver%anodes(solver%abase(b) + solver%nact(b)) = j
+          solver%aslot(j) = solver%nact(b)
+        end do
+      else
+        solver%nact(b) = solver%nact(b) + 1
+        solver%anodes(solver%abase(b) + solver%nact(b)) = node
+        solver%aslot(node) = solver%nact(b)
+      end if
+    end do
     if (allocated(solver%goff)) then
       if (size(solver%goff, 2) < c%n) deallocate (solver%goff, solver%gm)
     end if
@@ -305,7 +359,7 @@ contains
         solver%gm(s, k) = 0
         if (side_model(c, k, s) /= bm_mesh) cycle
         solver%goff(s, k) = total
-        solver%gm(s, k) = mailx_contact_dofs(m, side_body(c, k, s))
+        solver%gm(s, k) = 2 * solver%nact(side_body(c, k, s))
         total = total + 2 * solver%gm(s, k)
       end do
     end do
@@ -319,27 +373,42 @@ contains
       do s = 1, 2
         if (side_model(c, k, s) /= bm_mesh) cycle
         sgn = merge(1.0_wp, -1.0_wp, s == 1)
+        b = side_body(c, k, s)
         mb = solver%gm(s, k)
         g0 = solver%goff(s, k)
         solver%gmat(g0 + 1:g0 + 2 * mb) = 0.0_wp
         if (allocated(cols)) then
-          if (size(cols, 1) /= mb) deallocate (cols)
+          if (size(cols, 1) /= mailx_contact_dofs(m, b)) deallocate (cols)
         end if
-        if (.not. allocated(cols)) allocate (cols(mb, 2))
+        if (.not. allocated(cols)) allocate (cols(mailx_contact_dofs(m, b), 2))
         do i = 2 * s - 1, 2 * s
           node = c%mnode(i, k)
           wgt = sgn * c%mwt(i, k)
           if (wgt == 0.0_wp) cycle
           call mailx_compliance_columns(m, node, cols)
-          ! rows (G_t(i), G_n(i)) interleaved, as the mesh kernel reads them
-          solver%gmat(g0 + 1:g0 + 2 * mb:2) = solver%gmat(g0 + 1:g0 + 2 * mb:2) + &
-                                              wgt * (t(1) * cols(:, 1) + t(2) * cols(:, 2))
-          solver%gmat(g0 + 2:g0 + 2 * mb:2) = solver%gmat(g0 + 2:g0 + 2 * mb:2) + &
-                                              wgt * (nrm(1) * cols(:, 1) + nrm(2) * cols(:, 2))
+          ! rows of the active nodes; (G_t, G_n) interleaved, as the mesh kernel reads them
+          do j = 1, solver%nact(b)
+            associate (r1 => 2 * m%cslot(solver%anodes(solver%abase(b) + j)) - 1, q => g0 + 4 * j - 4)
+              solver%gmat(q + 1) = solver%gmat(q + 1) + wgt * (t(1) * cols(r1, 1) + t(2) * cols(r1, 2))
+              solver%gmat(q + 2) = solver%gmat(q + 2) + wgt * (nrm(1) * cols(r1, 1) + nrm(2) * cols(r1, 2))
+              solver%gmat(q + 3) = solver%gmat(q + 3) + wgt * (t(1) * cols(r1 + 1, 1) + t(2) * cols(r1 + 1, 2))
+              solver%gmat(q + 4) = solver%gmat(q + 4) + wgt * (nrm(1) * cols(r1 + 1, 1) + nrm(2) * cols(r1 + 1, 2))
+            end associate
+          end do
         end do
       end do
     end do
   end subroutine mesh_blocks
+
+  !> Clear the active-node marks of the step (aslot is kept zero between steps).
+  subroutine clear_active(solver)
+    type(nlgs_t), intent(inout) :: solver
+    integer :: b
+    if (.not. allocated(solver%nact)) return
+    do b = 1, size(solver%nact)
+      solver%aslot(solver%anodes(solver%abase(b) + 1:solver%abase(b) + solver%nact(b))) = 0
+    end do
+  end subroutine clear_active
 
   !> Solve the step's contact problem. On entry b%v = vfree (rigid), m%vfree
   !> (meshes), and c%r holds the warm start; on exit the velocities are
@@ -353,7 +422,9 @@ contains
     type(nlgs_report_t), intent(out) :: report
     integer :: k, iblock, isweep, n
     real(wp) :: sums(7), maxes(2), fsum, qsum, vscale
+    logical :: diverged
     n = c%n
+    diverged = .false.
     report%sweeps = 0
     if (allocated(solver%order)) then
       if (size(solver%order) < n) deallocate (solver%order, solver%qfree, solver%pidx, solver%pc, solver%pb, &
@@ -402,12 +473,23 @@ contains
           call rng_permute(solver%rng, solver%order(1:n))
           call pack_contacts()
         end if
-        do isweep = 1, solver%s%sweeps_per_check
-          call sweep(isweep == solver%s%sweeps_per_check)
-          report%sweeps = report%sweeps + 1
-        end do
+        if (solver%s%check_pass) then
+          do isweep = 1, solver%s%sweeps_per_check
+            call sweep(.false., .false.)
+            report%sweeps = report%sweeps + 1
+          end do
+          ! LMGC90's check: one more pass that evaluates every contact's update
+          ! from the state the sweeps reached, without applying it.
+          call sweep(.true., .true.)
+        else
+          ! The change of the block's last sweep.
+          do isweep = 1, solver%s%sweeps_per_check
+            call sweep(isweep == solver%s%sweeps_per_check, .false.)
+            report%sweeps = report%sweeps + 1
+          end do
+        end if
         call norms(report)
-        if (report%converged) exit blocks
+        if (report%converged .or. diverged) exit blocks   ! NaN/Inf: the caller's state check names it
       end do blocks
       call unpack_contacts()
     end if
@@ -568,8 +650,9 @@ contains
               solver%gside(2 * sd, jg) = solver%goff(sd, k)
               solver%ggm(sd, jg) = solver%gm(sd, k)
               solver%gfirst(sd, jg) = solver%moff(side_body(c, k, sd)) + 1
-              solver%gslot(2 * sd - 1, jg) = solver%moff(side_body(c, k, sd)) + 2 * m%cslot(c%mnode(2 * sd - 1, k)) - 1
-              solver%gslot(2 * sd, jg) = solver%moff(side_body(c, k, sd)) + 2 * m%cslot(c%mnode(2 * sd, k)) - 1
+              solver%gslot(2 * sd - 1, jg) = solver%moff(side_body(c, k, sd)) + &
+                                             2 * solver%aslot(c%mnode(2 * sd - 1, k)) - 1
+              solver%gslot(2 * sd, jg) = solver%moff(side_body(c, k, sd)) + 2 * solver%aslot(c%mnode(2 * sd, k)) - 1
               solver%gwt(2 * sd - 1:2 * sd, jg) = merge(1.0_wp, -1.0_wp, sd == 1) * c%mwt(2 * sd - 1:2 * sd, k)
             end if
           end do
@@ -616,7 +699,6 @@ contains
     !> with a meshed side, on both their sides.
     subroutine pack_meshes()
       integer :: k, sd, bm, total, j, i, mb, g0, v0
-      integer, allocatable :: set(:)
       if (allocated(solver%moff)) then
         if (size(solver%moff) /= m%n) deallocate (solver%moff)
       end if
@@ -639,9 +721,8 @@ contains
       if (.not. allocated(solver%mv)) allocate (solver%mv(max(total, 16)))
       do bm = 1, m%n
         if (solver%moff(bm) < 0) cycle
-        set = mailx_contact_set(m, bm)
-        do j = 1, size(set)
-          solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, set(j))
+        do j = 1, solver%nact(bm)
+          solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, solver%anodes(solver%abase(bm) + j))
         end do
       end do
       k = n
@@ -713,17 +794,17 @@ contains
     end subroutine mesh_velocities
 
     !> One Gauss–Seidel sweep; with check, LMGC90's norm sums of this sweep.
-    subroutine sweep(check)
-      logical, intent(in) :: check
+    subroutine sweep(check, evaluate_only)
+      logical, intent(in) :: check, evaluate_only
       real(wp) :: s6(6), g6(6), gmax(2)
       integer :: np
       np = solver%np
       call gs_sweep_2d_packed(np, solver%pb, solver%pc, solver%pcoh, solver%any_coh, c%coh, solver%pr, solver%pst, solver%bv, &
-                              solver%s%relax, check, s6, maxes)
+                              solver%s%relax, check, s6, maxes, evaluate_only)
       if (solver%ng > 0) then
         call gs_sweep_mesh(solver%ng, solver%gc, solver%gside, solver%ggm, solver%gfirst, solver%gslot, solver%gwt, &
                            solver%gcoh, c%coh, solver%gr, solver%gst, solver%bv, solver%mv, solver%gmat, &
-                           solver%s%relax, check, g6, gmax)
+                           solver%s%relax, check, g6, gmax, evaluate_only)
         s6 = s6 + g6
         maxes = max(maxes, gmax)
       end if
@@ -733,34 +814,11 @@ contains
     !> LMGC90's normalised errors from the sums of the last check sweep.
     subroutine norms(rep)
       type(nlgs_report_t), intent(inout) :: rep
-      real(wp) :: nact, quad_wr, mean_wrr, tol
-      tol = solver%s%tol
-      nact = sums(6)
-      ! No reaction, or reactions at round-off level compared with the free
-      ! velocities (bodies merely touching): nothing left to converge.
-      if (nact < 1.0_wp .or. sums(4) <= 0.0_wp .or. sqrt(sums(5) / max(nact, 1.0_wp)) <= 1.0e-12_wp * vscale) then
-        rep%quad_dv = 0.0_wp; rep%maxm_dv = 0.0_wp; rep%quad_dvr = 0.0_wp
-        rep%maxm_dvr = 0.0_wp; rep%mean_dvor = 0.0_wp
-        rep%converged = .true.
-        return
-      end if
-      quad_wr = sqrt(sums(5) / nact)
-      mean_wrr = sums(4) / nact
-      rep%quad_dv = sqrt(sums(1) / nact) / (quad_wr * tol)
-      rep%maxm_dv = sqrt(maxes(1)) / (quad_wr * tol)
-      rep%quad_dvr = sqrt(sums(2) / nact) / (mean_wrr * tol)
-      rep%maxm_dvr = sqrt(maxes(2)) / (mean_wrr * tol)
-      rep%mean_dvor = sums(3) / (sums(4) * tol)
-      if (rep%quad_dv /= rep%quad_dv) call fatal('NLGS diverged (NaN in the reactions)')
-      select case (solver%s%check)
-      case ('Maxm ')
-        rep%converged = abs(rep%mean_dvor) < 1.0_wp .and. rep%maxm_dv < 1.0_wp .and. rep%maxm_dvr < 1.0_wp
-      case ('QM/16')
-        rep%converged = abs(rep%mean_dvor) < 1.0_wp .and. rep%quad_dv < 1.0_wp .and. &
-                        rep%quad_dvr < 1.0_wp .and. rep%maxm_dv < 16.666_wp .and. rep%maxm_dvr < 16.666_wp
-      case default
-        rep%converged = abs(rep%mean_dvor) < 1.0_wp .and. rep%quad_dv < 1.0_wp .and. rep%quad_dvr < 1.0_wp
-      end select
+      type(lmgc_norms_t) :: nrm
+      call lmgc_norms(solver%s%check, solver%s%tol, sums(1:6), maxes, vscale, nrm, rep%converged)
+      rep%quad_dv = nrm%quad_dv; rep%maxm_dv = nrm%maxm_dv; rep%quad_dvr = nrm%quad_dvr
+      rep%maxm_dvr = nrm%maxm_dvr; rep%mean_dvor = nrm%mean_dvor
+      diverged = .not. nrm%finite
     end subroutine norms
   end subroutine nlgs_solve
 end module fracas_nlgs

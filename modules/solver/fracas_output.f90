@@ -19,7 +19,7 @@ module fracas_output
                         vtu_cell_data, vtu_end, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_polygon, &
                         vtu_cells_fixed, vtk_line
   use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc, tk_disk, &
-                               tk_xksid
+                               tk_xksid, tk_alpxx
   use fracas_scene, only: scene_t, step_report_t
   use fracas_version, only: version_string
   use fracas_contact_laws, only: law_czm
@@ -35,15 +35,16 @@ module fracas_output
   implicit none
   private
   public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
-            output_flush, output_close, series_names, output_owns
+            output_flush, output_close, series_names, output_owns, output_summary
 
-  integer, parameter :: n_series = 30
+  integer, parameter :: n_series = 33
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
     'step', 'time', 'contacts', 'active_contacts', 'sweeps', 'converged', 'residual_natural_map', &
     'residual_onepq', 'quad_dv', 'maxm_dv', 'mean_dvor', 'kinetic_energy', 'work_gravity', &
     'work_forces', 'work_supports', 'dissipated', 'cohesive_energy', 'damage_dissipated', 'balance_error', &
     'mean_overlap', 'max_overlap', 'solve_time', 'step_time', 'elastic_energy', 'plastic_work', &
-    'newton_iterations', 'crack_length', 'damaged_length', 'broken_interfaces', 'damaged_interfaces']
+    'newton_iterations', 'crack_length', 'damaged_length', 'broken_interfaces', 'damaged_interfaces', &
+    'bodies_time', 'detect_time', 'prepare_time']
   integer, parameter :: n_outline = 24   !< points of a circle or wall outline
   !> Seconds of wall time between flushes of the POSTPRO files.
   real(wp), parameter :: flush_interval = 2.0_wp
@@ -63,7 +64,14 @@ module fracas_output
     logical :: h5_open = .false.
     type(postpro_t) :: pp
     integer(i8) :: last_flush = 0
+    !> CPU time spent writing (so that a loaded machine does not inflate it), and
+    !> writes, per kind: VTK frames, HDF5 snapshots, DOF/Vloc_Rloc files, series
+    !> rows (with POSTPRO lines).
+    real(wp) :: seconds(4) = 0.0_wp
+    integer :: writes(4) = 0
   end type output_t
+
+  integer, parameter :: k_vtk = 1, k_snapshot = 2, k_outbox = 3, k_series = 4
 
 contains
 
@@ -163,6 +171,11 @@ contains
       call h5_write_attr(g, 'output_vtk_precision', trim(r%output_vtk_precision))
       call h5_write_attr(g, 'output_hdf5_every', r%output_hdf5_every)
       call h5_write_attr(g, 'progress_every', r%progress_every)
+      call h5_write_attr(g, 'driven_start', trim(r%driven_start))
+      call h5_write_attr(g, 'plane', trim(r%plane))
+      call h5_write_attr(g, 'newton_tolerance', r%newton_tolerance)
+      call h5_write_attr(g, 'newton_max_iterations', r%newton_max_iterations)
+      call h5_write_attr(g, 'linear_solver', trim(r%linear_solver))
     end associate
     text = ''
     if (allocated(deck%command_file)) text = deck%command_file
@@ -184,29 +197,40 @@ contains
     call h5_close_group(g)
   end subroutine write_run_group
 
-  !> /contactors: the geometry of every contactor in its body's frame.
+  !> /contactors: the geometry of every contactor: of a rigid body in its
+  !> body's frame, of a meshed body by its mesh nodes.
   subroutine write_contactors_group(o, sc)
     type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
     integer(hid_t) :: g
-    integer(ik), allocatable :: first(:), nvert(:)
+    integer(ik), allocatable :: first(:), nvert(:), nfirst(:), nnodes(:), body(:)
     integer :: k
     associate (t => sc%tactors)
-      allocate (first(t%n), nvert(t%n))
+      allocate (first(t%n), nvert(t%n), nfirst(t%n), nnodes(t%n), body(t%n))
       do k = 1, t%n
         first(k) = 0
         nvert(k) = 0
+        nfirst(k) = 0
+        nnodes(k) = 0
         if (t%kind(k) == tk_polyg) then
           first(k) = int(t%vfirst(k) - 1, ik)
           nvert(k) = int(t%vfirst(k + 1) - t%vfirst(k), ik)
         end if
+        if (t%model(k) == bm_rigid) then
+          body(k) = int(sc%bodies%number(t%body(k)), ik)
+        else
+          body(k) = int(t%body(k), ik)      ! MAILx bodies are numbered in deck order
+          nfirst(k) = int(t%nfirst(k) - 1, ik)
+          nnodes(k) = int(t%nfirst(k + 1) - t%nfirst(k), ik)
+        end if
       end do
       call results_group(o%h5, 'contactors', g)
       call h5_write_attr(g, 'count', int(t%n, ik))
-      call h5_write_dataset(g, 'body', int(sc%bodies%number(t%body(1:t%n)), ik))
+      call h5_write_dataset(g, 'model', int(t%model(1:t%n), ik))
+      call h5_write_dataset(g, 'body', body)
       call h5_write_dataset(g, 'rank', int(t%rank(1:t%n), ik))
       call h5_write_dataset(g, 'kind', int(t%kind(1:t%n), ik))
-      call h5_write_dataset(g, 'kind_names', [(tactor_kind_name(k), k=1, 4)])
+      call h5_write_dataset(g, 'kind_names', [(tactor_kind_name(k), k=tk_disk, tk_alpxx)])
       call h5_write_dataset(g, 'color', t%color(1:t%n))
       call h5_write_dataset(g, 'radius', t%radius(1:t%n))
       call h5_write_dataset(g, 'half_length', t%ax1(1:t%n))
@@ -218,6 +242,15 @@ contains
         call h5_write_dataset(g, 'vertices', t%vert)
       else
         call h5_write_dataset(g, 'vertices', reshape([real(wp) ::], [2, 0]))
+      end if
+      call h5_write_dataset(g, 'node_first', nfirst)
+      call h5_write_dataset(g, 'node_count', nnodes)
+      if (allocated(t%nodes)) then
+        call h5_write_dataset(g, 'nodes', int(t%nodes, ik))
+        call h5_write_dataset(g, 'apab', t%apab(1:t%n))
+      else
+        call h5_write_dataset(g, 'nodes', [integer(ik) ::])
+        call h5_write_dataset(g, 'apab', [real(wp) ::])
       end if
       call h5_close_group(g)
     end associate
@@ -314,6 +347,8 @@ contains
     type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
     character(len=6) :: num
+    real(wp) :: t0
+    call cpu_time(t0)
     o%n_vtk = o%n_vtk + 1
     write (num, '(i6.6)') o%n_vtk
     if (o%part_disks >= 0) then
@@ -336,7 +371,38 @@ contains
     end if
     call write_contacts_vtu(o%display//'/contacts_'//num//'.vtu', sc, o%vtk_single)
     call pvd_add(o%pvd, sc%time, 'contacts_'//num//'.vtu', part=o%part_contacts)
+    call clocked(o, k_vtk, t0)
   end subroutine output_vtk
+
+  !> Add the CPU time since t0 (from cpu_time) to kind k.
+  subroutine clocked(o, k, t0)
+    type(output_t), intent(inout) :: o
+    integer, intent(in) :: k
+    real(wp), intent(in) :: t0
+    real(wp) :: t1
+    call cpu_time(t1)
+    o%seconds(k) = o%seconds(k) + (t1 - t0)
+    o%writes(k) = o%writes(k) + 1
+  end subroutine clocked
+
+  !> One line on what the output cost: for each kind written, the writes and
+  !> the CPU time spent (e.g. for a progress report at the end of a run).
+  function output_summary(o) result(s)
+    type(output_t), intent(in) :: o
+    character(len=:), allocatable :: s
+    character(len=*), parameter :: what(4) = [character(len=15) :: 'VTK frames', 'HDF5 snapshots', &
+                                              'DOF/Vloc files', 'series rows']
+    character(len=64) :: buf
+    integer :: k
+    s = ''
+    do k = 1, 4
+      if (o%writes(k) == 0) cycle
+      write (buf, '(i0,1x,a,1x,f0.3,a,f0.3,a)') o%writes(k), trim(what(k)), o%seconds(k), ' s CPU (', &
+        1.0e3_wp * o%seconds(k) / o%writes(k), ' ms each)'
+      if (len(s) > 0) s = s//', '
+      s = s//trim(buf)
+    end do
+  end function output_summary
 
   !> Meshed bodies as an unstructured grid in the current configuration:
   !> point data displacement and velocity; cell data (Gauss-point averages)
@@ -546,7 +612,8 @@ contains
 
     logical function is_shape(k)
       integer, intent(in) :: k
-      is_shape = sc%tactors%kind(k) /= tk_disk .or. .not. disk_points
+      ! Contactors of meshed bodies are drawn with their mesh (meshes piece).
+      is_shape = sc%tactors%model(k) == bm_rigid .and. (sc%tactors%kind(k) /= tk_disk .or. .not. disk_points)
     end function is_shape
   end subroutine write_shapes_vtu
 
@@ -661,6 +728,8 @@ contains
     character(len=16) :: num
     integer :: k, it, m, pos
     integer :: per_type(n_inter)
+    real(wp) :: t0
+    call cpu_time(t0)
     o%n_out = o%n_out + 1
     write (num, '(i0)') o%n_out
     allocate (dofs(sc%bodies%n + sc%meshes%n))
@@ -729,6 +798,7 @@ contains
       end do
     end associate
     call write_vloc_rloc_file(o%outbox//'/Vloc_Rloc.OUT.'//trim(num), sc%step, sc%time, recs)
+    call clocked(o, k_outbox, t0)
   end subroutine output_outbox
 
   !> Gauss-point values of every element as LMGC90 writes them in GPV.OUT:
@@ -779,7 +849,9 @@ contains
     type(scene_t), intent(in) :: sc
     integer :: n
     real(wp), allocatable :: gap_end(:)
+    real(wp) :: t0
     if (.not. o%h5_open) return
+    call cpu_time(t0)
     n = sc%contacts%n
     associate (c => sc%contacts, t => sc%tactors)
       gap_end = c%gap(1:n) + sc%h * c%u(2, 1:n)
@@ -796,6 +868,7 @@ contains
     end associate
     if (sc%meshes%n > 0) call mesh_snapshot(o, sc)
     if (sc%cracks%nedges > 0) call cracks_snapshot(o, sc)
+    call clocked(o, k_snapshot, t0)
   end subroutine output_snapshot
 
   !> Cracks in the newest snapshot (group cracks): the crack paths (vertices
@@ -907,7 +980,9 @@ contains
     real(wp) :: balance, wgrav, wforces, wsupports, crack, damaged
     real(wp) :: per_family(sc%cracks%nfamilies)
     integer :: nbroken, ndamaged
+    real(wp) :: t0
     if (.not. o%h5_open) return
+    call cpu_time(t0)
     call cracks_lengths(sc%cracks, crack, damaged, per_family, nbroken, ndamaged)
     ! Rigid and meshed bodies together (kinetic0 holds the initial kinetic and
     ! elastic energy; meshes add their strain energy and plastic work).
@@ -923,9 +998,10 @@ contains
       sc%damage_dissipated, balance, &
       rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
       sc%meshes%plastic_work, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
-      real(ndamaged, wp)])
+      real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds])
     call postpro_step(o%pp, sc, rep)
     call flush_if_due(o)
+    call clocked(o, k_series, t0)
   end subroutine output_series
 
   !> Flush the POSTPRO files every flush_interval seconds (fracas.h5 keeps its own clock).

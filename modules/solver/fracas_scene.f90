@@ -11,7 +11,7 @@ module fracas_scene
                           rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
   use fracas_drives, only: drive_value
   use fracas_mailx, only: mailx_t, mailx_build, mailx_begin_step, mailx_detection_coor, mailx_converged, &
-                          mailx_end_step, mailx_kinetic_energy
+                          mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint
   use fracas_cracks, only: cracks_t, cracks_init, cracks_update
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
   use fracas_contact_laws, only: law_t, law_from_input, law_czm
@@ -34,9 +34,14 @@ module fracas_scene
     real(wp) :: mean_overlap = 0.0_wp, max_overlap = 0.0_wp
     integer :: late_contacts = 0         !< new contacts already overlapping when first detected
     real(wp) :: late_overlap = 0.0_wp    !< their largest overlap
-    real(wp) :: solve_seconds = 0.0_wp   !< wall time of the contact solve
-    real(wp) :: step_seconds = 0.0_wp    !< wall time of the whole step
+    ! Wall time of the step and of its parts (doc/benchmarks.md):
+    real(wp) :: bodies_seconds = 0.0_wp  !< free velocities (meshes: residual, factorizations, Newton)
+    real(wp) :: detect_seconds = 0.0_wp  !< contact detection and history
+    real(wp) :: prepare_seconds = 0.0_wp !< Delassus blocks (meshes: compliance, G blocks) and laws
+    real(wp) :: solve_seconds = 0.0_wp   !< NLGS sweeps
+    real(wp) :: step_seconds = 0.0_wp    !< the whole step
     integer :: newton_iterations = 0     !< meshed bodies: Newton iterations of the step
+    logical :: newton_converged = .true. !< ... and whether their loop converged
   end type step_report_t
 
   type :: scene_t
@@ -46,6 +51,7 @@ module fracas_scene
     type(mailx_t) :: meshes                  !< meshed bodies (MAILx); n = 0 in a rigid scene
     real(wp) :: newton_tolerance = 1.0e-6_wp
     integer :: newton_max_iterations = 20
+    logical :: detection_approach = .true.
     type(tactors_t) :: tactors
     type(cracks_t) :: cracks                 !< cohesive interfaces of meshes (none without)
     type(law_t), allocatable :: laws(:)
@@ -87,6 +93,7 @@ contains
     sc%detection_frequency = max(1, deck%run%detection_frequency)
     sc%newton_tolerance = deck%run%newton_tolerance
     sc%newton_max_iterations = deck%run%newton_max_iterations
+    sc%detection_approach = deck%run%detection_approach
     bodies = deck%bodies
     sc%rigid_deck = pack([(ib, ib=1, size(bodies))], bodies%model /= 'MAILx')
     sc%mesh_deck = pack([(ib, ib=1, size(bodies))], bodies%model == 'MAILx')
@@ -117,6 +124,7 @@ contains
       end associate
     end do
     call rbdy2_init(sc%bodies, number, ref, mass, inertia, avrd, deck%gravity(1:2))
+    sc%bodies%driven_start_imposed = deck%run%driven_start == 'imposed'
     do k = 1, size(deck%driven)
       if (deck%driven(k)%model /= 'MAILx') call rbdy2_add_drive(sc%bodies, deck%driven(k))
     end do
@@ -155,6 +163,7 @@ contains
     end do
     sc%first_tactor(size(bodies) + 1) = k
     sc%contacts%with_mesh = sc%meshes%n > 0
+    if (sc%meshes%n > 0) call mailx_set_contact_hint(sc%meshes, sc%tactors%nodes)
     call cracks_init(sc%cracks, sc%tactors, sc%meshes)
     call detection_init(sc%det, sc%tactors, deck%see_rules, nick)
     allocate (sc%q(3, nb))
@@ -196,6 +205,7 @@ contains
     ns%max_checks = deck%run%nlgs_max_checks
     ns%order = deck%run%nlgs_order
     ns%seed = deck%run%nlgs_seed
+    ns%check_pass = deck%run%nlgs_check_pass
     call nlgs_init(sc%solver, ns)
 
   contains
@@ -257,6 +267,7 @@ contains
     real(wp) :: margin, vmax, gap_end, dx(3), stored, coh_work, released, dissipated_all
     type(nlgs_report_t) :: newton_rep
     call system_clock(t0, rate)
+    t1 = t0
     associate (b => sc%bodies, c => sc%contacts, m => sc%meshes)
       call rbdy2_begin_step(b, sc%time, sc%h, sc%theta)
       call rbdy2_detection_coor(b, sc%h, sc%theta, sc%q)
@@ -264,27 +275,27 @@ contains
         call mailx_begin_step(m, sc%time)
         call mailx_detection_coor(m, sc%xn)
       end if
+      call lap(rep%bodies_seconds)
       if (mod(sc%steps_done, sc%detection_frequency) == 0) then
-        ! Between rough detections bodies move at most about vmax h per step.
-        margin = 0.0_wp
-        if (sc%detection_frequency > 1) then
-          vmax = 0.0_wp
-          do k = 1, b%n
-            vmax = max(vmax, norm2(b%vbegin(1:2, k)) + abs(b%vbegin(3, k)) * b%avrd(k))
-          end do
-          if (m%nnodes > 0) vmax = max(vmax, maxval(norm2(m%vbegin, dim=1)))
-          margin = 2.0_wp * vmax * sc%h * sc%detection_frequency
-        end if
+        ! Between rough detections bodies move at most about vmax h per step,
+        ! and a pair closes by at most 2 vmax h within a step.
+        vmax = 0.0_wp
+        do k = 1, b%n
+          vmax = max(vmax, norm2(b%vfree(1:2, k)) + abs(b%vfree(3, k)) * b%avrd(k), &
+                     norm2(b%vbegin(1:2, k)) + abs(b%vbegin(3, k)) * b%avrd(k))
+        end do
+        if (m%nnodes > 0) vmax = max(vmax, maxval(norm2(m%vfree, dim=1)), maxval(norm2(m%vbegin, dim=1)))
+        margin = 2.0_wp * vmax * sc%h * sc%detection_frequency
         if (m%n > 0) then
           call detect_rough(sc%det, sc%tactors, sc%q, sc%movable, margin, sc%xn, m%movable)
         else
           call detect_rough(sc%det, sc%tactors, sc%q, sc%movable, margin)
         end if
       end if
-      if (m%n > 0) then
-        call detect_fine(sc%det, sc%tactors, sc%q, c, sc%xn)
+      if (sc%detection_approach) then
+        call detect_fine(sc%det, sc%tactors, sc%q, c, sc%xn, b%vfree, m%vfree, sc%h)
       else
-        call detect_fine(sc%det, sc%tactors, sc%q, c)
+        call detect_fine(sc%det, sc%tactors, sc%q, c, sc%xn)
       end if
       do k = 1, c%n
         pair_known = .false.
@@ -316,20 +327,26 @@ contains
                                                     merge(1.0_wp, 0.0_wp, sc%step == 0), -99.0_wp]
         end if
       end do
-      call system_clock(t1)
+      call lap(rep%detect_seconds)
       call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h)
+      call lap(rep%prepare_seconds)
       call nlgs_solve(sc%solver, c, b, m, rep%nlgs)
+      call lap(rep%solve_seconds)
       ! Nonlinear meshed bodies: Newton iterations, the contact problem solved
       ! in each (warm-started from the last), as LMGC90.
-      do while (.not. mailx_converged(m, sc%newton_tolerance, sc%newton_max_iterations))
+      do
+        if (mailx_converged(m, sc%newton_tolerance, sc%newton_max_iterations)) exit
+        call lap(rep%bodies_seconds)
         b%v = b%vfree
         call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h)
+        call lap(rep%prepare_seconds)
         call nlgs_solve(sc%solver, c, b, m, newton_rep)
+        call lap(rep%solve_seconds)
         rep%nlgs%sweeps = rep%nlgs%sweeps + newton_rep%sweeps
       end do
+      call lap(rep%bodies_seconds)
       rep%newton_iterations = m%iterations
-      call system_clock(t2)
-      rep%solve_seconds = real(t2 - t1, wp) / real(rate, wp)
+      rep%newton_converged = m%newton_converged
       call nlgs_update_cohesive(c, sc%laws, sc%h, sc%time + sc%h, stored, coh_work, released)
       call cracks_update(sc%cracks, c, sc%laws, sc%steps_done == 0, sc%step + 1)
 
@@ -381,6 +398,16 @@ contains
     end associate
     call system_clock(t2)
     rep%step_seconds = real(t2 - t0, wp) / real(rate, wp)
+
+  contains
+
+    !> Add the wall time since the last lap to acc.
+    subroutine lap(acc)
+      real(wp), intent(inout) :: acc
+      call system_clock(t2)
+      acc = acc + real(t2 - t1, wp) / real(rate, wp)
+      t1 = t2
+    end subroutine lap
   end subroutine scene_step
 
   !> Work done on the free bodies by velocity-driven dofs through the contacts

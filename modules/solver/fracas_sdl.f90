@@ -16,6 +16,7 @@ module fracas_sdl
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, warn
   use fracas_random, only: rng_t, rng_seed, rng_permute
+  use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
   use fracas_local_solver, only: coulomb_2d_inv, inverse_block, natural_map_2d, coulomb_3d, inverse_block_3d, &
                                  natural_map_3d
   implicit none
@@ -374,7 +375,7 @@ contains
       if (check) then
         ! no criterion at all (err_tol = 0, check none): run max_sweeps
         conv = lmgc .or. s%err_tol > 0.0_wp
-        if (lmgc) conv = lmgc_converged(s, sums, maxes, rep)
+        if (lmgc) conv = lmgc_converged(p, s, sums, maxes, rep)
         if (est) then
           e_est = sqrt(fsum) / qnorm(p)
           if (s%accel > 0) call aa_watch(aa, e_est, rep%sweeps)
@@ -601,36 +602,18 @@ contains
     end do
   end subroutine project_all
 
-  !> LMGC90's normalised norms from the sums of a check sweep (as fracas_nlgs).
-  logical function lmgc_converged(s, sums, maxes, rep) result(conv)
+  !> LMGC90's normalised norms from the sums of a check sweep (the scene NLGS's
+  !> procedure; the velocity scale is the RMS of q over the contacts).
+  logical function lmgc_converged(p, s, sums, maxes, rep) result(conv)
+    type(sdl_problem_t), intent(in) :: p
     type(sdl_settings_t), intent(in) :: s
     real(wp), intent(in) :: sums(6), maxes(2)
     type(sdl_report_t), intent(inout) :: rep
-    real(wp) :: nact, quad_wr, mean_wrr
-    nact = sums(6)
-    if (nact < 1.0_wp .or. sums(4) <= 0.0_wp) then
-      rep%quad_dv = 0.0_wp; rep%maxm_dv = 0.0_wp; rep%quad_dvr = 0.0_wp
-      rep%maxm_dvr = 0.0_wp; rep%mean_dvor = 0.0_wp
-      conv = .true.
-      return
-    end if
-    quad_wr = sqrt(sums(5) / nact)
-    mean_wrr = sums(4) / nact
-    rep%quad_dv = sqrt(sums(1) / nact) / (quad_wr * s%tol)
-    rep%maxm_dv = sqrt(maxes(1)) / (quad_wr * s%tol)
-    rep%quad_dvr = sqrt(sums(2) / nact) / (mean_wrr * s%tol)
-    rep%maxm_dvr = sqrt(maxes(2)) / (mean_wrr * s%tol)
-    rep%mean_dvor = sums(3) / (sums(4) * s%tol)
-    if (rep%quad_dv /= rep%quad_dv) call fatal('stored-Delassus NLGS diverged (NaN in the reactions)')
-    select case (s%check)
-    case ('Maxm ')
-      conv = abs(rep%mean_dvor) < 1.0_wp .and. rep%maxm_dv < 1.0_wp .and. rep%maxm_dvr < 1.0_wp
-    case ('QM/16')
-      conv = abs(rep%mean_dvor) < 1.0_wp .and. rep%quad_dv < 1.0_wp .and. &
-             rep%quad_dvr < 1.0_wp .and. rep%maxm_dv < 16.666_wp .and. rep%maxm_dvr < 16.666_wp
-    case default
-      conv = abs(rep%mean_dvor) < 1.0_wp .and. rep%quad_dv < 1.0_wp .and. rep%quad_dvr < 1.0_wp
-    end select
+    type(lmgc_norms_t) :: nrm
+    call lmgc_norms(s%check, s%tol, sums, maxes, p%norm_q / sqrt(real(max(p%nc, 1), wp)), nrm, conv)
+    if (.not. nrm%finite) call fatal('stored-Delassus NLGS diverged (NaN or Inf in the reactions)')
+    rep%quad_dv = nrm%quad_dv; rep%maxm_dv = nrm%maxm_dv; rep%quad_dvr = nrm%quad_dvr
+    rep%maxm_dvr = nrm%maxm_dvr; rep%mean_dvor = nrm%mean_dvor
   end function lmgc_converged
 
   !> LMGC90's check sums for one contact: du = W_aa (r_old - r_new), rbar the mean.

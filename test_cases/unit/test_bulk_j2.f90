@@ -16,13 +16,16 @@
 !> 4. the consistent tangent against central differences of bulk_update
 !>    (1e-6 relative), elastic and plastic states, both planes, all 4 columns
 !>    in plane strain (the zz column is used by mean-dilatation elements);
-!> 5. elastic plane stress Hooke: sigma = E/(1-nu^2) [...] and eps_zz.
+!> 5. elastic plane stress Hooke: sigma = E/(1-nu^2) [...] and eps_zz;
+!> 6. simple shear (both planes, a radial path): tau = G gamma up to
+!>    yield0/sqrt(3), then tau = sigma_y(p)/sqrt(3) with gamma_p = sqrt(3) p,
+!>    and elastic unloading tau = tau_1 - G (gamma_1 - gamma).
 program test_bulk_j2
   use fracas_kinds, only: wp
   use fracas_testing, only: check_close, check_true, test_finish
   use fracas_bulk, only: bulk_t, bulk_j2, bulk_elastic, plane_strain, plane_stress, bulk_update, &
                          bulk_plastic_work, gp_size, gp_sxx, gp_syy, gp_szz, gp_exx, gp_eyy, gp_ezz, &
-                         gp_pxx, gp_p
+                         gp_pxx, gp_pgxy, gp_p
   implicit none
 
   real(wp), parameter :: young = 2.0e11_wp, nu = 0.3_wp, sy0 = 2.0e8_wp
@@ -35,6 +38,8 @@ program test_bulk_j2
   call uniaxial_stress_plane_strain()
   call tangent_checks()
   call plane_stress_hooke()
+  call simple_shear(plane_strain)
+  call simple_shear(plane_stress)
   call test_finish()
 
 contains
@@ -280,4 +285,43 @@ contains
     call check_close('plane stress Hooke: D(1,2) / (nu E/(1-nu^2))', dtan(1, 2) / (nu * c), 1.0_wp, 1.0e-12_wp)
     call check_true('gp layout: strain xx at 5', gp_exx == 5)
   end subroutine plane_stress_hooke
+  subroutine simple_shear(plane)
+    integer, intent(in) :: plane
+    real(wp) :: s0(gp_size), s1(gp_size), dtan(4, 4), g, h, gam, gam_y, gam1, tau1, p, tau_ref, err
+    character(len=12) :: pname
+    integer :: i
+    pname = merge('plane strain', 'plane stress', plane == plane_strain)
+    g = young / (2.0_wp * (1.0_wp + nu))
+    h = steel%hardening
+    gam_y = sy0 / sqrt(3.0_wp) / g
+    gam1 = 4.0_wp * gam_y
+    s0 = 0.0_wp
+    err = 0.0_wp
+    ! load to 4 gamma_y in 20 steps, unload by 1.5 gamma_y in 5 steps (elastic)
+    do i = 1, 25
+      if (i <= 20) then
+        gam = gam1 * i / 20.0_wp
+      else
+        gam = gam1 - 1.5_wp * gam_y * (i - 20) / 5.0_wp
+      end if
+      call bulk_update(steel, plane, [0.0_wp, 0.0_wp, gam, 0.0_wp], s0, s1, dtan)
+      ! loading: gamma = tau/G + sqrt(3) p, tau = (s0 + H p)/sqrt(3)
+      ! (p frozen at its gamma_1 value while unloading)
+      p = max(0.0_wp, (merge(gam, gam1, i <= 20) - gam_y) / (sqrt(3.0_wp) + h / (sqrt(3.0_wp) * g)))
+      tau1 = (sy0 + h * p) / sqrt(3.0_wp)
+      if (gam <= gam_y) then
+        tau_ref = g * gam
+      else if (i <= 20) then
+        tau_ref = tau1
+      else
+        tau_ref = tau1 - g * (gam1 - gam)
+      end if
+      err = max(err, abs(s1(3) - tau_ref) / sy0, abs(s1(gp_p) - p) / gam_y, &
+                abs(s1(gp_pgxy) - sqrt(3.0_wp) * p) / gam_y, &
+                maxval(abs(s1([gp_sxx, gp_syy, gp_szz]))) / sy0)
+      s0 = s1
+    end do
+    call check_close(trim(pname)//' simple shear: max error of tau, p, gamma_p against closed form', &
+                     err, 0.0_wp, 1.0e-8_wp)
+  end subroutine simple_shear
 end program test_bulk_j2

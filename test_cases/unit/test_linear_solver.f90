@@ -2,8 +2,9 @@
 !> A = m I + K of fracas_test_matrices (SPD, cond(A) ~ 1 + 8 k/m = 801 here).
 !> Reference: a known solution x* (entries in [-1, 1]) and b = A x*; every method must
 !> return x with max |x - x*| / max |x*| <= 1e-10 (the bound cond(A) eps ~ 2e-13 with a
-!> wide margin). Sizes: 128 dofs (8 x 8 nodes: dense, 'auto' -> LAPACK) and 3200 dofs
-!> (40 x 40: CHOLMOD supernodal, UMFPACK, 'auto' -> CHOLMOD).
+!> wide margin). Sizes: 32 dofs (4 x 4 nodes: 'auto' -> LAPACK), 128 dofs (8 x 8:
+!> CHOLMOD simplicial), 3200 dofs (40 x 40: CHOLMOD simplicial, UMFPACK, 'auto' -> CHOLMOD)
+!> and the 3D lattice on 12 x 12 x 12 nodes (5184 dofs: CHOLMOD supernodal).
 !> Also: several right-hand sides, numeric refactorization with new values, an
 !> unsymmetric matrix (LU), an indefinite symmetric one ('auto' falls back to LU), the
 !> free-dof system A_ff x_f = b_f - A_fd x_d, and explicit inverses of 6..16 blocks.
@@ -19,19 +20,23 @@ program test_linear_solver
   implicit none
   real(wp), parameter :: tol = 1.0e-10_wp, mass = 1.0_wp, stiffness = 100.0_wp
   type(rng_t) :: rng
-  type(sparse_t) :: small, large
-  integer, allocatable :: map_large(:)
+  type(sparse_t) :: tiny, small, large, cube
 
   call rng_seed(rng, 2024)
+  call lattice(4, 4, tiny)
   call lattice(8, 8, small)
-  call lattice(40, 40, large, map_large)
-  call check_true('auto_dense_max_n between the two test sizes', small%n <= auto_dense_max_n .and. large%n > auto_dense_max_n)
+  call lattice(40, 40, large)
+  call lattice(12, 12, cube, nz=12)
+  call check_true('auto_dense_max_n: 32 dofs dense, 128 sparse', tiny%n <= auto_dense_max_n .and. small%n > auto_dense_max_n)
 
+  call solve_and_check(tiny, 'dense', 'LAPACK dpotrf')
+  call solve_and_check(tiny, 'auto', 'LAPACK dpotrf')
   call solve_and_check(small, 'dense', 'LAPACK dpotrf')
-  call solve_and_check(small, 'cholmod', 'CHOLMOD')
+  call solve_and_check(small, 'cholmod', 'CHOLMOD simplicial')
   call solve_and_check(small, 'umfpack', 'UMFPACK LU')
-  call solve_and_check(small, 'auto', 'LAPACK dpotrf')
-  call solve_and_check(large, 'cholmod', 'CHOLMOD supernodal')
+  call solve_and_check(small, 'auto', 'CHOLMOD')
+  call solve_and_check(large, 'cholmod', 'CHOLMOD simplicial')
+  call solve_and_check(cube, 'cholmod', 'CHOLMOD supernodal')
   call solve_and_check(large, 'cholmod', 'METIS ordering', 'metis')
   call solve_and_check(large, 'cholmod', 'AMD ordering', 'amd')
   call solve_and_check(large, 'umfpack', 'UMFPACK LU, symmetric strategy')
@@ -40,8 +45,9 @@ program test_linear_solver
   call refactorization('dense', 12, 12)
   call refactorization('cholmod', 40, 40)
   call refactorization('umfpack', 40, 40)
-  call refactorization('auto', 8, 8)
+  call refactorization('auto', 4, 4)
   call refactorization('auto', 40, 40)
+  call refactorization('cholmod', 12, 12, 12)
 
   call unsymmetric()
   call indefinite()
@@ -51,8 +57,9 @@ program test_linear_solver
 
 contains
 
-  subroutine lattice(nx, ny, a, map, seed, m)
+  subroutine lattice(nx, ny, a, map, seed, m, nz)
     integer, intent(in) :: nx, ny
+    integer, intent(in), optional :: nz
     type(sparse_t), intent(out) :: a
     integer, allocatable, intent(out), optional :: map(:)
     integer, intent(in), optional :: seed
@@ -62,8 +69,8 @@ contains
     real(wp) :: m_
     m_ = mass
     if (present(m)) m_ = m
-    call lattice_triplets(nx, ny, m_, stiffness, rows, cols, vals, seed)
-    call sparse_from_triplets(2 * nx * ny, rows, cols, vals, a, map)
+    call lattice_triplets(nx, ny, m_, stiffness, rows, cols, vals, seed, nz)
+    call sparse_from_triplets(maxval(rows), rows, cols, vals, a, map)
   end subroutine lattice
 
   subroutine random_vector(x)
@@ -112,19 +119,20 @@ contains
 
   !> Factor with the seed-1 bar stiffnesses, refill with seed 2 on the same triplet list,
   !> factor_update, solve: the answer matches the new matrix, not the old one.
-  subroutine refactorization(method, nx, ny)
+  subroutine refactorization(method, nx, ny, nz)
     character(len=*), intent(in) :: method
     integer, intent(in) :: nx, ny
+    integer, intent(in), optional :: nz
     type(sparse_t) :: a
     type(factor_t) :: f
     integer, allocatable :: map(:), rows(:), cols(:)
     real(wp), allocatable :: vals(:), xstar(:), b(:), x_old(:)
     character(len=:), allocatable :: name, label
-    call lattice(nx, ny, a, map, seed=1)
+    call lattice(nx, ny, a, map, seed=1, nz=nz)
     label = 'update '//method//' n='//itoa(a%n)
     call factor_build(f, a, method)
     name = factor_method_name(f)
-    call lattice_triplets(nx, ny, 3.0_wp, stiffness, rows, cols, vals, seed=2)
+    call lattice_triplets(nx, ny, 3.0_wp, stiffness, rows, cols, vals, seed=2, nz=nz)
     call sparse_refill(a, map, vals)
     allocate (xstar(a%n), b(a%n))
     call random_vector(xstar)
@@ -141,7 +149,9 @@ contains
     call factor_free(f)
   end subroutine refactorization
 
-  !> A + S, S skew (convection-like, +-0.3 k on the x-coupling of horizontal neighbours).
+  !> A + S + U: S skew (convection-like, +-0.3 k on the x-coupling of horizontal
+  !> neighbours), U one-sided (-0.2 k from each x-dof to the x-dof two nodes to the right,
+  !> outside the symmetric pattern).
   subroutine unsymmetric()
     integer :: sizes(2), s, nx, i, j, a_dof, b_dof, t
     integer, allocatable :: rows(:), cols(:)
@@ -151,7 +161,7 @@ contains
     character(len=16) :: method
     character(len=:), allocatable :: expect
     integer :: m
-    sizes = [8, 40]
+    sizes = [4, 40]
     do s = 1, 2
       nx = sizes(s)
       call lattice_triplets(nx, nx, mass, stiffness, rows, cols, vals)
@@ -166,6 +176,13 @@ contains
           rows(t + 1) = a_dof; cols(t + 1) = b_dof; vals(t + 1) = 0.3_wp * stiffness
           rows(t + 2) = b_dof; cols(t + 2) = a_dof; vals(t + 2) = -0.3_wp * stiffness
           t = t + 2
+        end do
+      end do
+      ! One-sided entries (x-dof to the x-dof two nodes right): the pattern is unsymmetric too.
+      do j = 1, nx
+        do i = 1, nx - 2
+          a_dof = 2 * (i + (j - 1) * nx) - 1
+          rows = [rows, a_dof]; cols = [cols, a_dof + 4]; vals = [vals, -0.2_wp * stiffness]
         end do
       end do
       call sparse_from_triplets(2 * nx * nx, rows, cols, vals, a)
@@ -199,7 +216,7 @@ contains
     integer :: s, nx
     character(len=:), allocatable :: expect
     do s = 1, 2
-      nx = merge(8, 40, s == 1)
+      nx = merge(4, 40, s == 1)
       call lattice(nx, nx, a, m=-1.0e-4_wp * stiffness)
       expect = merge('LAPACK dgetrf', 'UMFPACK LU   ', s == 1)
       allocate (xstar(a%n), b(a%n))

@@ -2,7 +2,7 @@
 # Each case folder holds gen.py (writes the committed DATBOX), README.md and check.py.
 #   validation.czm_<case>.run    fracas --overwrite --output <build dir>/czm_<case> <deck>
 #   validation.czm_<case>.check  check.py <build dir>/czm_<case> [args] (fixture of the run)
-# LABEL is quick (run + check < ~20 s) or long.
+# LABEL is quick (run and check a few seconds each), medium (up to ~20 s) or long.
 function(fracas_czm_case name deck_dir check_script label)
   set(out ${CMAKE_CURRENT_BINARY_DIR}/czm_${name})
   add_test(NAME validation.czm_${name}.run
@@ -26,9 +26,11 @@ foreach(law mac expo)
 endforeach()
 # Cyclic opening: secant unloading (beta frozen), damage resumed past the old maximum.
 foreach(law mac mp3)
-  fracas_czm_case(cyclic_${law} ${_czm}/czm_cyclic/${law} ${_czm}/czm_cyclic/check.py quick ${law})
+  fracas_czm_case(cyclic_${law} ${_czm}/czm_cyclic/${law} ${_czm}/czm_cyclic/check.py medium ${law})
 endforeach()
 # Rate dependence of the viscous MAC law (b > 0): peaks vs the integrated damage ODE.
 fracas_czm_case(rate ${_czm}/czm_rate ${_czm}/czm_rate/check.py quick)
 # Energy audit: a glued block pushed until the glue breaks, then sliding with friction.
-fracas_czm_case(energy ${_czm}/czm_energy ${_czm}/czm_energy/check.py quick)
+fracas_czm_case(energy ${_czm}/czm_energy ${_czm}/czm_energy/check.py medium)
+# Both blocks fully driven: the contacts exist and follow the law's closed form (issue 9).
+fracas_czm_case(driven_pair ${_czm}/czm_driven_pair ${_czm}/czm_driven_pair/check.py quick)

@@ -189,32 +189,25 @@ def cost_guess(s):
 
 def load(out, case_dir):
     """What the error measures need from a run (fracas.h5 + BODIES.DAT)."""
-    import h5py
-    from tagged import body_contactor_kinds, gravity
+    from tagged import Run, body_contactor_kinds, gravity
     kinds = body_contactor_kinds(Path(case_dir) / "DATBOX" / "BODIES.DAT")
     g = gravity(Path(case_dir) / "DATBOX" / "BULK_BEHAV.DAT")
-    with h5py.File(Path(out) / "OUTBOX" / "fracas.h5", "r") as f:
+    with Run(Path(out) / "OUTBOX" / "fracas.h5") as f:
         grain = np.array([("JONCx" not in k) for k in kinds])
         wall = ~grain
-        mass = f["bodies/mass"][:]
-        radius = f["bodies/radius"][:]
-        ref = f["bodies/reference"][:]
-        s = {k: f["series"][k][:] for k in f["series"]}
+        mass = np.asarray(f.bodies["mass"], dtype=float)
+        radius = np.asarray(f.bodies["radius"], dtype=float)
+        ref = f.bodies["reference"]
+        s = f.series
         snaps = {}
-        for name in sorted(f["snapshots"]):
-            sn = f["snapshots"][name]
-            t = round(float(sn.attrs["time"]) / SNAP_EVERY_T) * SNAP_EVERY_T
-            snaps[round(t, 6)] = (ref + sn["bodies/X"][:])[:, :2]
-        last = f["snapshots"][sorted(f["snapshots"])[-1]]
-        c = last["contacts"]
-        if int(c.attrs["count"]):
-            cd, an = c["cd_body"][:] - 1, c["an_body"][:] - 1
-            rt, rn = c["reaction"][:, 0], c["reaction"][:, 1]
-            nrm = c["normal"][:]
-        else:
-            cd = an = np.zeros(0, int)
-            rt = rn = np.zeros(0)
-            nrm = np.zeros((0, 2))
+        for name in f.snapshot_names:
+            sn = f.snapshot(name)
+            t = round(sn.time / SNAP_EVERY_T) * SNAP_EVERY_T
+            snaps[round(t, 6)] = (ref + sn.X)[:, :2]
+        c = f.snapshot(-1).contacts
+        cd, an = c["cd_body"] - 1, c["an_body"] - 1
+        rt, rn = c["reaction"][:, 0], c["reaction"][:, 1]
+        nrm = c["normal"]
     weight = float(np.sum(mass[grain]) * abs(g[1]))
     pos = snaps[max(snaps)]
     Ry = rt * (-nrm[:, 0]) + rn * nrm[:, 1]

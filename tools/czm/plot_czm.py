@@ -175,7 +175,7 @@ def wall(args, plt):
                 xy = v @ np.array([[c, s], [-s, c]]) + pos[k, :2]
                 ax.fill(xy[:, 0], xy[:, 1], facecolor="0.85" if ct.color != "PUSHx" else "0.5",
                         edgecolor="k", lw=0.6)
-        d = run.contacts(isnap)
+        d = run.contacts[isnap]
         beta = d["internals"][:, 3]
         glue = np.isin(d["law"], [run.law_names.index(n) + 1 for n in ("glue1", "glue2")])
         sc = ax.scatter(d["point"][glue, 0], d["point"][glue, 1], c=beta[glue], cmap="RdYlGn", vmin=0, vmax=1,

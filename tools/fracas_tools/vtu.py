@@ -107,7 +107,8 @@ def piece_of(path):
 def render(display_dir, frame=-1, out=None, ax=None, force_scale=None, title=None):
     """Draw frame `frame` (index into the listed times; -1: last) of a DISPLAY folder:
     the disks (disks_*.vtu: filled circles of their radius), the other contactors
-    (shapes_*.vtu: filled polygons, drum circles) and, at each contact point, a
+    (shapes_*.vtu: filled polygons, drum circles), the elements of meshed bodies
+    (meshes_*.vtu) and, at each contact point, a
     segment along the normal with a width proportional to the normal force
     (contacts_*.vtu)."""
     import matplotlib
@@ -139,6 +140,12 @@ def render(display_dir, frame=-1, out=None, ax=None, force_scale=None, title=Non
             for p in lines:
                 ax.plot(p[:, 0], p[:, 1], color="0.25", lw=0.6)
             extent.append(g["points"][:, :2])
+    if "meshes" in files:          # meshed bodies: element outlines (corners of quadratic cells)
+        g = read_vtu(files["meshes"])
+        corners = {5: 3, 9: 4, 22: 3, 23: 4, 7: None}
+        polys = [g["points"][idx[:corners.get(int(ty)) or len(idx)], :2] for idx, ty in zip(cells(g), g["types"])]
+        ax.add_collection(PolyCollection(polys, facecolor="0.85", edgecolor="0.35", linewidth=0.3))
+        extent.append(g["points"][:, :2])
     if "contacts" in files:
         con = read_vtu(files["contacts"])
         data = con["point_data"] or con["cell_data"]

@@ -64,7 +64,6 @@ def main(argv=None):
     p.add_argument("--series", metavar="PNG", help="also plot the time series into PNG")
     a = p.parse_args(argv)
 
-    import h5py
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -73,18 +72,16 @@ def main(argv=None):
 
     case = Path(a.case)
     tact = read_contactors(case / "DATBOX" / "BODIES.DAT")
-    with h5py.File(tagged.find_h5(a.run_dir), "r") as f:
-        ref = f["bodies/reference"][:]
-        names = sorted(f["snapshots"])
-        s = f["snapshots"][names[a.snapshot]]
-        step, time = int(s.attrs["step"]), float(s.attrs["time"])
-        X = s["bodies/X"][:]
-        c = s["contacts"]
-        nc = int(c.attrs["count"])
-        cd = c["cd_body"][:] - 1 if nc else np.zeros(0, int)
-        an = c["an_body"][:] - 1 if nc else np.zeros(0, int)
-        rn = c["reaction"][:, 1] if nc else np.zeros(0)
-        pt = c["point"][:] if nc else np.zeros((0, 2))
+    with tagged.Run(tagged.find_h5(a.run_dir)) as f:
+        ref = f.bodies["reference"]
+        s = f.snapshot(a.snapshot)
+        step, time = s.step, s.time
+        X = s.X
+        c = s.contacts
+        cd = c["cd_body"] - 1
+        an = c["an_body"] - 1
+        rn = c["reaction"][:, 1]
+        pt = c["point"]
     if len(tact) != len(ref):
         raise SystemExit("plot_packing.py: BODIES.DAT and fracas.h5 disagree on the number of bodies")
     pos = ref + X
@@ -141,12 +138,11 @@ def main(argv=None):
 
 
 def plot_series(run_dir, out, dpi=100):
-    import h5py
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    with h5py.File(tagged.find_h5(run_dir), "r") as f:
-        s = {k: f["series"][k][:] for k in f["series"]}
+    with tagged.Run(tagged.find_h5(run_dir)) as f:
+        s = f.series
     t = s["time"]
     fig, axs = plt.subplots(3, 1, figsize=(6.4, 6.4), sharex=True)
     axs[0].semilogy(t, np.maximum(s["kinetic_energy"], 1e-16), color="k")

@@ -10,7 +10,8 @@ import pytest
 
 TOOLS = Path(__file__).resolve().parents[1]
 REPO = TOOLS.parent
-DECKS = REPO / ".." / "shared" / "lmgc90_decks"
+# The LMGC90 decks: the path CMake was configured with (FRACAS_LMGC90_DECKS), else ../shared.
+DECKS = Path(os.environ.get("FRACAS_LMGC90_DECKS", REPO / ".." / "shared" / "lmgc90_decks"))
 sys.path.insert(0, str(TOOLS))
 
 from fracas_tools import read_case  # noqa: E402
@@ -81,7 +82,7 @@ def test_wrapper_script(tmp_path):
     assert (tmp_path / "arch" / "DATBOX" / "COMMAND.DAT").exists()
 
 
-@pytest.mark.skipif(not DECKS.is_dir(), reason="../shared/lmgc90_decks not present")
+@pytest.mark.skipif(not DECKS.is_dir(), reason=f"LMGC90 decks not found at {DECKS} (set FRACAS_LMGC90_DECKS)")
 def test_rewrite_lmgc90_deck(tmp_path):
     run_cli("rewrite", DECKS / "drum", tmp_path / "drum")
     assert (tmp_path / "drum" / "DATBOX" / "BODIES.DAT").read_bytes() == \

@@ -2,6 +2,7 @@
 round trips, the LMGC90 decks of ../shared/lmgc90_decks, error locations."""
 
 import math
+import os
 import sys
 from pathlib import Path
 
@@ -15,9 +16,28 @@ from fracas_tools import datbox  # noqa: E402
 from fracas_tools.fortran_io import d14, e14  # noqa: E402
 from fracas_tools.pre import RunControl  # noqa: E402
 
-DECKS = Path(__file__).resolve().parents[2] / ".." / "shared" / "lmgc90_decks"
-DECK_NAMES = sorted(p.name for p in DECKS.iterdir() if (p / "DATBOX").is_dir()) if DECKS.is_dir() else []
-needs_decks = pytest.mark.skipif(not DECKS.is_dir(), reason="../shared/lmgc90_decks not present")
+# The LMGC90 decks: the path CMake was configured with (FRACAS_LMGC90_DECKS), else ../shared.
+DECKS = Path(os.environ.get("FRACAS_LMGC90_DECKS",
+                            Path(__file__).resolve().parents[2] / ".." / "shared" / "lmgc90_decks"))
+
+
+def _deck_names():
+    """Decks of rigid bodies; meshed (MAILx) decks are skipped until fracas_tools reads them."""
+    if not DECKS.is_dir():
+        return []
+    out = []
+    for p in sorted(DECKS.iterdir()):
+        if not (p / "DATBOX").is_dir():
+            continue
+        meshed = "MAILx" in (p / "DATBOX" / "BODIES.DAT").read_text(errors="replace")
+        out.append(pytest.param(p.name, marks=pytest.mark.skip(
+            reason=f"{p.name}: meshed bodies (MAILx), not read by fracas_tools yet")) if meshed else p.name)
+    return out
+
+
+DECK_NAMES = _deck_names()
+needs_decks = pytest.mark.skipif(not DECKS.is_dir(), reason=f"LMGC90 decks not found at {DECKS} "
+                                                            "(set FRACAS_LMGC90_DECKS)")
 
 DATBOX_FILES = ["BODIES.DAT", "BULK_BEHAV.DAT", "TACT_BEHAV.DAT", "DRV_DOF.DAT", "DOF.INI",
                 "Vloc_Rloc.INI", "COMMAND.DAT"]

@@ -28,6 +28,13 @@ HINGE_T = 0.2                 # s: time at which the hinges are read
 HINGE_ROT = 1.0e-3            # rad: relative rotation that makes a joint a hinge
 TOL_REL = 1.0e-6              # vertical support reaction (NLGS tolerance 1e-6)
 TOL_THRUST = 1.0e-4           # relative margin on the admissible thrust range (8-digit deck)
+# Published values (nscd_validation.md 2.6): Milankovitch's t_min/R = 0.1075 (radial joints,
+# true self-weight; Makris & Alexakis 2013), given to 4 digits (+-5e-5), and the haunch
+# hinge 54.50 deg from the crown (CCR 2011: 54.4963 deg).
+PUBLISHED_TMIN = 0.1075
+PUBLISHED_TMIN_TOL = 5.0e-5
+PUBLISHED_HINGE_DEG = 54.5
+N_FINE = 100                  # voussoirs for the limit analysis against the continuous value
 
 
 def main():
@@ -38,6 +45,14 @@ def main():
     ref_hinges = arch_limit.hinges(N, R, gen.MU)
     ck.info("limit analysis: t_min/R, 20 quadrilateral voussoirs", tmin / R,
             note="0.1075 for N -> infinity (Milankovitch)")
+    # The project's limit analysis against the published value: with many voussoirs it
+    # must give Milankovitch's t_min to the digits published; with the deck's 20 it must
+    # lie inside the deck's bracket (0.98 .. 1.02 x 0.1075), or the bracket tests nothing.
+    ck.close(f"limit analysis: t_min/R with {N_FINE} voussoirs vs published 0.1075",
+             arch_limit.t_min(N_FINE, R, gen.MU) / R, PUBLISHED_TMIN, PUBLISHED_TMIN_TOL,
+             note="Milankovitch 1907 (Makris & Alexakis 2013), 4 digits")
+    ck.true("limit analysis: t_min(20)/R inside the deck's bracket 0.98..1.02 x 0.1075",
+            0.98 * PUBLISHED_TMIN < tmin / R < 1.02 * PUBLISHED_TMIN, ours=tmin / R)
     t = res.time
     for i, (centre, tr, color, expected) in enumerate(gen.ARCHES):
         b0 = gen.first_body(i)
@@ -87,6 +102,14 @@ def main():
                     ours=" ".join(map(str, found)),
                     note=f"limit analysis: {' '.join(map(str, ref_hinges))}; "
                          f"others turn < {np.max(np.abs(np.delete(rel, found))):.1e} rad")
+            # the haunch hinges against the published angle: joint j is 180 j / N degrees
+            # from the right springing; hinges can only form at joints, so within half a
+            # joint spacing (4.5 deg for N = 20) of 54.5 deg from the crown
+            haunch = [abs(90.0 - 180.0 * j / N) for j in found if j not in (0, N // 2, N)]
+            ck.true(f"{tag} haunch hinges {PUBLISHED_HINGE_DEG} deg from the crown (published), "
+                    f"within half a joint spacing", len(haunch) == 2 and
+                    all(abs(a - PUBLISHED_HINGE_DEG) <= 90.0 / N for a in haunch),
+                    ours=" ".join(f"{a:.1f}" for a in haunch), note=f"+-{90.0 / N:.1f} deg")
             # the side of each hinge: the loaded contact of the joint is at the extrados or intrados
             c = res.contacts[k]
             sides = []

@@ -15,9 +15,11 @@ ROOT = HERE.parents[2]
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(ROOT / "tools" / "validation"))
 sys.path.insert(0, str(ROOT / "tools" / "czm"))
+sys.path.insert(0, str(HERE.parent))
 import gen          # noqa: E402  (the deck parameters)
 import valtools     # noqa: E402
 from czmrun import CzmRun  # noqa: E402
+import czm_closed_forms as cf  # noqa: E402  (independent closed forms, czm.md 1.2)
 
 _trapz = getattr(np, "trapezoid", None) or np.trapz   # numpy 2 renamed trapz
 
@@ -38,7 +40,8 @@ def main():
     if len(sys.argv) < 3 or sys.argv[2] not in gen.LAWS:
         raise SystemExit(f"usage: check.py RUN_DIR LAW ({' '.join(gen.LAWS)})")
     name = sys.argv[2]
-    law = gen.LAWS[name][1]
+    # References from the closed forms of czm.md 1.2 (not the solver's update mirrored)
+    law = cf.Closed.of(gen.LAWS[name][1])
     run = CzmRun(sys.argv[1], full=True)
     ck = valtools.Checker(f"czm_mode_II/{name} ({gen.LAWS[name][0]})")
     pr = run.pair(UPPER, LOWER)

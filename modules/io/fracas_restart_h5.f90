@@ -1,0 +1,151 @@
+!> Restart points in OUTBOX/fracas.h5: everything a run needs to continue
+!> exactly as if it had not stopped, at full precision, as plain arrays (the
+!> solver layer converts its scene to and from restart_state_t).
+!>
+!>   /restart                 attribute last: step of the latest restart point
+!>   /restart/<step>          one point (group name: the step number, no padding)
+!>     attributes  step, steps_done, time, bodies, contactors, vtk_frames, outbox_writes
+!>     X, V        (3, nb) body displacements and velocities at the end of the step
+!>     energies    energy audit accumulators (names in attribute names)
+!>     rng_state   the NLGS shuffle generator, a 64-bit state as two 32-bit halves
+!>     history/    contacts of the step as the next step reads them: first (nt+1),
+!>                 inter, an, sub, status (n), force, point (2, n), internals (5, n)
+!>     pairs       (4, np) broad-phase pairs kept between rough detections
+!>                 (candidate, antagonist, interaction, law), pair_alert (np)
+!>
+!> Layout in doc/output_layout.md; use in doc/restart.md.
+module fracas_restart_h5
+  use fracas_kinds, only: wp, ik, i8
+  use fracas_errors, only: fatal
+  use fracas_strings, only: itoa
+  use fracas_files, only: file_exists
+  use fracas_h5, only: hid_t, h5_open_file, h5_close_file, h5_create_group, h5_open_group, &
+                       h5_close_group, h5_exists, h5_write_attr, h5_read_attr, &
+                       h5_write_dataset, h5_read_dataset
+  implicit none
+  private
+  public :: restart_state_t, restart_h5_write, restart_h5_read, n_energies, energy_names
+
+  integer, parameter :: n_energies = 7
+  character(len=*), parameter :: energy_names = 'kinetic0,work_gravity,work_forces,work_supports,' // &
+                                                'dissipated,cohesive_energy,damage_dissipated'
+
+  type :: restart_state_t
+    integer :: step = 0, steps_done = 0
+    real(wp) :: time = 0.0_wp
+    integer :: vtk_frames = 0, outbox_writes = 0
+    integer(i8) :: rng_state = 0_i8
+    real(wp) :: energies(n_energies) = 0.0_wp
+    real(wp), allocatable :: x(:, :), v(:, :)
+    integer :: ntactors = 0
+    integer, allocatable :: first(:), inter(:), an(:), sub(:), status(:)
+    real(wp), allocatable :: force(:, :), point(:, :), internals(:, :)
+    integer, allocatable :: pairs(:, :)
+    real(wp), allocatable :: pair_alert(:)
+  end type restart_state_t
+
+contains
+
+  !> Write restart point st into the open results file fid (the caller
+  !> flushes: the driver writes it just before a snapshot, which flushes).
+  subroutine restart_h5_write(fid, st)
+    integer(hid_t), intent(in) :: fid
+    type(restart_state_t), intent(in) :: st
+    integer(hid_t) :: groot, g, gh
+    character(len=:), allocatable :: name
+    integer(ik) :: halves(2)
+    name = itoa(st%step)
+    if (h5_exists(fid, 'restart')) then
+      call h5_open_group(fid, 'restart', groot)
+    else
+      call h5_create_group(fid, 'restart', groot)
+    end if
+    if (h5_exists(groot, name)) call fatal('restart point of step '//name//' written twice')
+    call h5_create_group(groot, name, g)
+    call h5_write_attr(g, 'step', int(st%step, ik))
+    call h5_write_attr(g, 'steps_done', int(st%steps_done, ik))
+    call h5_write_attr(g, 'time', st%time)
+    call h5_write_attr(g, 'bodies', int(size(st%x, 2), ik))
+    call h5_write_attr(g, 'contactors', int(st%ntactors, ik))
+    call h5_write_attr(g, 'vtk_frames', int(st%vtk_frames, ik))
+    call h5_write_attr(g, 'outbox_writes', int(st%outbox_writes, ik))
+    call h5_write_dataset(g, 'X', st%x)
+    call h5_write_dataset(g, 'V', st%v)
+    call h5_write_dataset(g, 'energies', st%energies)
+    call h5_write_attr(g, 'energy_names', energy_names)
+    halves = transfer(st%rng_state, halves)
+    call h5_write_dataset(g, 'rng_state', halves)
+    call h5_create_group(g, 'history', gh)
+    call h5_write_dataset(gh, 'first', st%first)
+    call h5_write_dataset(gh, 'inter', st%inter)
+    call h5_write_dataset(gh, 'an', st%an)
+    call h5_write_dataset(gh, 'sub', st%sub)
+    call h5_write_dataset(gh, 'status', st%status)
+    call h5_write_dataset(gh, 'force', st%force)
+    call h5_write_dataset(gh, 'point', st%point)
+    if (allocated(st%internals)) call h5_write_dataset(gh, 'internals', st%internals)
+    call h5_close_group(gh)
+    call h5_write_dataset(g, 'pairs', st%pairs)
+    call h5_write_dataset(g, 'pair_alert', st%pair_alert)
+    call h5_close_group(g)
+    call h5_write_attr(groot, 'last', int(st%step, ik))
+    call h5_close_group(groot)
+  end subroutine restart_h5_write
+
+  !> Read the restart point of step `step` (< 0: the latest) from PATH.
+  subroutine restart_h5_read(path, step, st)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: step
+    type(restart_state_t), intent(out) :: st
+    integer(hid_t) :: fid, groot, g, gh
+    integer(ik) :: ival
+    integer(ik), allocatable :: halves(:)
+    real(wp), allocatable :: e(:)
+    character(len=:), allocatable :: name
+    if (.not. file_exists(path)) call fatal('restart file '//trim(path)//' does not exist')
+    call h5_open_file(path, fid)
+    if (.not. h5_exists(fid, 'restart')) call fatal(trim(path)//' holds no restart point (written by '// &
+      'a Fracas without restart points, or stopped before its first snapshot)')
+    call h5_open_group(fid, 'restart', groot)
+    if (step < 0) then
+      call h5_read_attr(groot, 'last', ival)
+      name = itoa(int(ival))
+    else
+      name = itoa(step)
+    end if
+    if (.not. h5_exists(groot, name)) call fatal(trim(path)//' has no restart point at step '//name// &
+      ' (restart points are written with every HDF5 snapshot and at the last step; see h5ls '// &
+      trim(path)//'/restart)')
+    call h5_open_group(groot, name, g)
+    call h5_read_attr(g, 'step', ival); st%step = ival
+    call h5_read_attr(g, 'steps_done', ival); st%steps_done = ival
+    call h5_read_attr(g, 'time', st%time)
+    call h5_read_attr(g, 'contactors', ival); st%ntactors = ival
+    call h5_read_attr(g, 'vtk_frames', ival); st%vtk_frames = ival
+    call h5_read_attr(g, 'outbox_writes', ival); st%outbox_writes = ival
+    call h5_read_dataset(g, 'X', st%x)
+    call h5_read_dataset(g, 'V', st%v)
+    call h5_read_dataset(g, 'energies', e)
+    if (size(e) /= n_energies) call fatal(trim(path)//': restart point '//name//' has '//itoa(size(e))// &
+                                          ' energies, expected '//itoa(n_energies))
+    st%energies = e
+    call h5_read_dataset(g, 'rng_state', halves)
+    if (size(halves) /= 2) call fatal(trim(path)//': restart point '//name//': bad rng_state')
+    st%rng_state = transfer(halves, st%rng_state)
+    call h5_open_group(g, 'history', gh)
+    call h5_read_dataset(gh, 'first', st%first)
+    call h5_read_dataset(gh, 'inter', st%inter)
+    call h5_read_dataset(gh, 'an', st%an)
+    call h5_read_dataset(gh, 'sub', st%sub)
+    call h5_read_dataset(gh, 'status', st%status)
+    call h5_read_dataset(gh, 'force', st%force)
+    call h5_read_dataset(gh, 'point', st%point)
+    if (h5_exists(gh, 'internals')) call h5_read_dataset(gh, 'internals', st%internals)
+    call h5_close_group(gh)
+    call h5_read_dataset(g, 'pairs', st%pairs)
+    call h5_read_dataset(g, 'pair_alert', st%pair_alert)
+    call h5_close_group(g)
+    call h5_close_group(groot)
+    call h5_close_file(fid)
+  end subroutine restart_h5_read
+end module fracas_restart_h5

@@ -1,0 +1,288 @@
+!> What keeps a run from reporting nonsense: checks of the scene that cannot
+!> be made by the readers alone.
+!>
+!> - scene_check_start (with --check and before a run): every body has a
+!>   mass and inertia that are normal numbers, a position and an initial speed
+!>   that double precision resolves at the body's size, every driven dof an
+!>   imposed value that keeps it so over the run, and alert distances in that
+!>   range too. Errors name the deck line.
+!> - scene_fault (after every step, O(bodies + contacts)): positions,
+!>   velocities, reactions, cohesive state and energy audit finite, and no body
+!>   beyond the resolvable range. Returns a message naming the body or contact ('' if sound).
+!>
+!> Resolvable range: a coordinate x is stored to about |x| eps; when that
+!> exceeds a thousandth of the body's size, contact geometry at the body is
+!> meaningless. So |x| and the distance travelled in one step must stay below
+!> resolvable_length(size) = 1e-3 size / eps (4.5e11 m for a 0.1 m disk).
+module fracas_state_guard
+  use fracas_kinds, only: wp
+  use fracas_deck, only: deck_t, source_t
+  use fracas_errors, only: input_error
+  use fracas_ids, only: inter_names
+  use fracas_drives, only: drive_value
+  use fracas_rbdy2, only: rbdy2_kinetic_energy
+  use fracas_scene, only: scene_t
+  use fracas_strings, only: itoa, rtoa
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_invalid, ieee_underflow, &
+                                           ieee_get_halting_mode, ieee_set_halting_mode, ieee_set_flag
+  implicit none
+  private
+  public :: scene_check_start, scene_fault, resolvable_length
+
+contains
+
+  !> Largest coordinate (and step displacement) at which a body of this size
+  !> is still resolved to a thousandth of its size.
+  elemental real(wp) function resolvable_length(size) result(l)
+    real(wp), intent(in) :: size
+    l = 1.0e-3_wp * size / epsilon(1.0_wp)
+  end function resolvable_length
+
+  !> Refuse a built scene that cannot run: input_error at the deck line that
+  !> makes it so. Run from --check too. Floating-point traps are off while
+  !> the (possibly overflowing) bounds are evaluated.
+  subroutine scene_check_start(sc, deck)
+    type(scene_t), intent(in) :: sc
+    type(deck_t), intent(in) :: deck
+    logical :: halt(3)
+    integer :: k
+    call ieee_get_halting_mode(ieee_overflow, halt(1))
+    call ieee_get_halting_mode(ieee_invalid, halt(2))
+    call ieee_get_halting_mode(ieee_underflow, halt(3))
+    call ieee_set_halting_mode(ieee_overflow, .false.)
+    call ieee_set_halting_mode(ieee_invalid, .false.)
+    call ieee_set_halting_mode(ieee_underflow, .false.)
+    associate (b => sc%bodies)
+      do k = 1, b%n
+        call check_mass(k)
+        call check_state(k)
+      end do
+      do k = 1, size(deck%driven)
+        call check_drive(k)
+      end do
+      do k = 1, size(deck%see_rules)
+        call check_alert(k)
+      end do
+      call check_sizes()
+    end associate
+    call ieee_set_flag(ieee_overflow, .false.)
+    call ieee_set_flag(ieee_invalid, .false.)
+    call ieee_set_flag(ieee_underflow, .false.)
+    call ieee_set_halting_mode(ieee_overflow, halt(1))
+    call ieee_set_halting_mode(ieee_invalid, halt(2))
+    call ieee_set_halting_mode(ieee_underflow, halt(3))
+
+  contains
+
+    subroutine check_mass(k)
+      integer, intent(in) :: k
+      real(wp) :: m, inertia
+      m = sc%bodies%mass(1, k)
+      inertia = sc%bodies%mass(3, k)
+      if (.not. (normal_positive(m) .and. normal_positive(inertia))) &
+        call input_error(deck%bodies(k)%src%file, deck%bodies(k)%src%line, 0, 'body '//itoa(k)// &
+          ': its mass ('//rtoa(m)//') or rotational inertia ('//rtoa(inertia)//') is not a normal positive '// &
+          "number: density of material '"//trim(deck%bodies(k)%behav)//"' times its area (radius "// &
+          rtoa(sc%bodies%avrd(k))//') underflows or overflows double precision')
+    end subroutine check_mass
+
+    !> Position and initial velocity within the resolvable range.
+    subroutine check_state(k)
+      integer, intent(in) :: k
+      real(wp) :: lim, pos, moved
+      type(source_t) :: src
+      integer :: j
+      lim = resolvable_length(sc%bodies%avrd(k))
+      pos = maxval(abs(sc%bodies%ref(1:2, k) + sc%bodies%x(1:2, k)))
+      moved = sc%h * speed_of(sc%bodies%v(:, k), sc%bodies%avrd(k))
+      src = deck%bodies(k)%src
+      do j = 1, size(deck%dof_ini)
+        if (deck%dof_ini(j)%body == k) src = deck%dof_ini(j)%src
+      end do
+      if (.not. (pos <= lim)) call input_error(src%file, src%line, 0, 'body '//itoa(k)//' is at '//rtoa(pos)// &
+        ' from the origin: beyond '//rtoa(lim)//', the largest coordinate at which double precision resolves '// &
+        'a body of radius '//rtoa(sc%bodies%avrd(k))//' to a thousandth of its size')
+      if (.not. (moved <= lim)) call input_error(src%file, src%line, 0, 'body '//itoa(k)// &
+        ': its initial velocity moves it by '//rtoa(moved)//' in one time step, beyond '//rtoa(lim)// &
+        ' (what double precision resolves at its size)')
+    end subroutine check_state
+
+    !> An imposed velocity must not move its body beyond the resolvable range
+    !> in one step; an imposed force not by its velocity change over one step.
+    !> Evaluated at the start and end of the run and at the table points.
+    subroutine check_drive(k)
+      integer, intent(in) :: k
+      real(wp) :: t0, t1, vmax, lim, reach
+      integer :: ib, j
+      associate (d => deck%driven(k))
+        if (d%model /= 'RBDY2') return
+        ib = d%body
+        if (ib < 1 .or. ib > sc%bodies%n) return   ! reported by the scene builder
+        t0 = sc%time
+        t1 = sc%time + sc%h * real(deck%run%number_of_steps, wp)
+        vmax = 0.0_wp
+        do j = 1, size(sc%bodies%drives)
+          associate (dr => sc%bodies%drives(j))
+            if (dr%body /= ib .or. dr%dof /= d%dof .or. (dr%is_velocity .neqv. d%kind == 'vlocy')) cycle
+            vmax = max(vmax, abs(drive_value(dr, t0)), abs(drive_value(dr, t1)))
+            if (allocated(dr%evo_v)) vmax = max(vmax, maxval(abs(dr%evo_v)))
+            if (.not. allocated(dr%evo_t)) vmax = max(vmax, (abs(dr%ct) + abs(dr%amp)) * &
+                                                      max(abs(min(1.0_wp, dr%rampi + dr%ramp * t0)), &
+                                                          abs(min(1.0_wp, dr%rampi + dr%ramp * t1))))
+          end associate
+        end do
+        lim = resolvable_length(sc%bodies%avrd(ib))
+        if (d%dof == 3) vmax = vmax * sc%bodies%avrd(ib)   ! spin: speed of the rim
+        if (d%kind == 'vlocy') then
+          reach = sc%h * vmax
+        else
+          reach = sc%h**2 * vmax / sc%bodies%mass(d%dof, ib)
+        end if
+        if (.not. (reach <= lim)) call input_error(d%src%file, d%src%line, 0, 'driven '//trim(d%kind)// &
+          ' of body '//itoa(ib)//' dof '//itoa(d%dof)//' reaches '//rtoa(vmax)//' during the run: it moves the '// &
+          'body by '//rtoa(reach)//' in one time step, beyond '//rtoa(lim)//' (what double precision resolves '// &
+          'at its size)')
+      end associate
+    end subroutine check_drive
+
+    !> An alert distance beyond the resolvable range of the largest contactor
+    !> makes every pair a contact (O(n^2) contacts) without meaning anything.
+    subroutine check_alert(k)
+      integer, intent(in) :: k
+      real(wp) :: lim
+      if (.not. any(sc%tactors%bound > 0.0_wp)) return   ! meshes only: sizes known at detection
+      lim = resolvable_length(maxval(sc%tactors%bound))
+      associate (r => deck%see_rules(k))
+        if (.not. (max(r%alert, r%global_alert) <= lim)) call input_error(r%src%file, r%src%line, 55, &
+          'alert distance '//rtoa(max(r%alert, r%global_alert))//' is beyond '//rtoa(lim)// &
+          ', what double precision resolves at the size of the largest contactor (every pair would be a contact)')
+      end associate
+    end subroutine check_alert
+
+    !> Contact geometry compares contactors with each other: the largest must stay
+    !> within what double precision resolves at the size of the smallest.
+    subroutine check_sizes()
+      integer :: kmax, kmin, ib, it
+      ! Mesh contactors (bound 0) take their size from their elements, checked with the mesh.
+      if (count(sc%tactors%bound > 0.0_wp) < 2) return
+      kmax = maxloc(sc%tactors%bound, 1)
+      kmin = minloc(sc%tactors%bound, 1, mask=sc%tactors%bound > 0.0_wp)
+      if (sc%tactors%bound(kmax) <= resolvable_length(sc%tactors%bound(kmin))) return
+      ib = sc%tactors%body(kmax)
+      it = sc%tactors%rank(kmax)
+      associate (src => deck%bodies(ib)%tactors(it)%src)
+        call input_error(src%file, src%line, 0, 'contactor '//itoa(it)//' of body '//itoa(ib)//' is '// &
+          rtoa(sc%tactors%bound(kmax))//' across, the smallest contactor (body '//itoa(sc%tactors%body(kmin))// &
+          ') '//rtoa(sc%tactors%bound(kmin))//': beyond what double precision resolves at the small one')
+      end associate
+    end subroutine check_sizes
+  end subroutine scene_check_start
+
+  !> '' if the state after the last step is sound, else what is wrong, naming
+  !> the first faulty body or contact (bodies by their BODIES.DAT number).
+  function scene_fault(sc) result(msg)
+    type(scene_t), intent(in) :: sc
+    character(len=:), allocatable :: msg
+    integer :: k, n
+    real(wp) :: lim, pos, moved
+    msg = ''
+    associate (b => sc%bodies, c => sc%contacts)
+      if (.not. (all(ieee_is_finite(b%x)) .and. all(ieee_is_finite(b%v)))) then
+        do k = 1, b%n
+          if (.not. all(ieee_is_finite(b%x(:, k)))) then
+            msg = body_name(k)//' has a non-finite position ('//vec(b%x(:, k))//')'
+            return
+          end if
+          if (.not. all(ieee_is_finite(b%v(:, k)))) then
+            msg = body_name(k)//' has a non-finite velocity ('//vec(b%v(:, k))//')'
+            return
+          end if
+        end do
+      end if
+      do k = 1, b%n
+        lim = resolvable_length(b%avrd(k))
+        pos = max(abs(b%ref(1, k) + b%x(1, k)), abs(b%ref(2, k) + b%x(2, k)))
+        moved = sc%h * speed_of(b%v(:, k), b%avrd(k))
+        if (pos > lim) then
+          msg = body_name(k)//' ran away: it is at '//rtoa(pos)//' from the origin, beyond '//rtoa(lim)// &
+                ' (what double precision resolves at its size)'
+          return
+        end if
+        if (moved > lim) then
+          msg = body_name(k)//' ran away: its velocity ('//vec(b%v(:, k))//') moves it by '//rtoa(moved)// &
+                ' in one step, beyond '//rtoa(lim)//' (what double precision resolves at its size)'
+          return
+        end if
+      end do
+      if (.not. all(ieee_is_finite([rbdy2_kinetic_energy(b), sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, &
+                                    sc%cohesive_energy, sc%damage_dissipated]))) then
+        msg = 'the energy audit overflowed (kinetic energy '//rtoa(rbdy2_kinetic_energy(b))//', work of gravity '//rtoa(sc%work_gravity)//', of forces '// &
+              rtoa(sc%work_forces)//', of supports '//rtoa(sc%work_supports)//', dissipated '// &
+              rtoa(sc%dissipated)//'): masses, forces or velocities beyond double precision'
+        return
+      end if
+      n = c%n
+      if (n == 0) return
+      if (.not. all(ieee_is_finite(c%r(:, 1:n)))) then
+        do k = 1, n
+          if (.not. all(ieee_is_finite(c%r(:, k)))) then
+            msg = contact_name(k)//' has a non-finite impulse ('//vec(c%r(:, k))//')'
+            return
+          end if
+        end do
+      end if
+      if (c%with_cohesion) then
+        if (.not. all(ieee_is_finite(c%internals(:, 1:n)))) then
+          do k = 1, n
+            if (.not. all(ieee_is_finite(c%internals(:, k)))) then
+              msg = contact_name(k)//' has a non-finite cohesive state (L, ut, un, beta, TPSini = '// &
+                    vec(c%internals(:, k))//')'
+              return
+            end if
+          end do
+        end if
+      end if
+    end associate
+
+  contains
+
+    function body_name(k) result(s)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: s
+      s = 'body '//itoa(sc%bodies%number(k))
+    end function body_name
+
+    function contact_name(k) result(s)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: s
+      associate (c => sc%contacts)
+        s = 'contact '//itoa(k)//' ('//inter_names(c%inter(k))//' between bodies '// &
+            itoa(sc%bodies%number(c%cdb(k)))//' and '//itoa(sc%bodies%number(c%anb(k)))//')'
+      end associate
+    end function contact_name
+  end function scene_fault
+
+  !> Largest speed of a point of a rigid body of radius r: |v| + |omega| r.
+  pure real(wp) function speed_of(v, r) result(s)
+    real(wp), intent(in) :: v(3), r
+    s = max(abs(v(1)), abs(v(2))) + abs(v(3)) * r
+  end function speed_of
+
+  pure logical function normal_positive(x)
+    real(wp), intent(in) :: x
+    normal_positive = x >= tiny(1.0_wp) .and. x <= huge(1.0_wp)
+  end function normal_positive
+
+  !> '(a, b, c)' in short form.
+  function vec(x) result(s)
+    real(wp), intent(in) :: x(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ''
+    do i = 1, size(x)
+      if (i > 1) s = s//', '
+      s = s//rtoa(x(i))
+    end do
+  end function vec
+end module fracas_state_guard

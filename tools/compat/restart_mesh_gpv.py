@@ -1,0 +1,67 @@
+#!/usr/bin/python3
+"""Restart of a J2 meshed body from its OUTBOX text files (LMGC90's way): run the plastic
+bar deck 200 steps in one go, and 60 steps then 140 more from DOF.OUT/GPV.OUT copied to
+DOF.INI/GPV.INI; the restarted run must continue the plastic state.
+
+usage: restart_mesh_gpv.py FRACAS DECK_DIR RUN_CONTROL WORK_DIR [--no-gpv]
+(--no-gpv leaves GPV.INI out: the plastic state is lost and the check must fail.)
+
+References: the uninterrupted run. Tolerances: the restart reads values printed with 7
+digits, so node displacements agree within 1e-6 relative and the cumulative plastic
+strain p of every Gauss point within 1e-5 relative at step 200.
+"""
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+
+def run(fracas, case, cmd, steps, out):
+    subprocess.run([fracas, "-q", "--overwrite", "--command", str(cmd), "--set", f"number_of_steps={steps}",
+                    "--set", "output_dof_every=0", "--output", str(out), str(case)], check=True)
+
+
+def values(path, pattern):
+    return [float(m.replace("D", "E")) for m in re.findall(pattern, Path(path).read_text())]
+
+
+def main():
+    fracas, deck, cmd, work = sys.argv[1:5]
+    with_gpv = "--no-gpv" not in sys.argv
+    work = Path(work)
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    run(fracas, deck, cmd, 200, work / "whole")
+    run(fracas, deck, cmd, 60, work / "first")
+    case = work / "restart"
+    shutil.copytree(Path(deck) / "DATBOX", case / "DATBOX")
+    for name in ("Vloc_Rloc.INI", "POSTPRO.DAT", "GPV.INI"):
+        (case / "DATBOX" / name).unlink(missing_ok=True)
+    shutil.copy(work / "first" / "OUTBOX" / "DOF.OUT.1", case / "DATBOX" / "DOF.INI")
+    if with_gpv:
+        shutil.copy(work / "first" / "OUTBOX" / "GPV.OUT.1", case / "DATBOX" / "GPV.INI")
+    run(fracas, case, cmd, 140, work / "second")
+    num = r"(-?\d\.\d+D[+-]\d+)"
+    x_whole = values(work / "whole" / "OUTBOX" / "DOF.OUT.1", r"X\(\d\)=\s*" + num)
+    x_rest = values(work / "second" / "OUTBOX" / "DOF.OUT.1", r"X\(\d\)=\s*" + num)
+    scale = max(abs(v) for v in x_whole)
+    dx = max(abs(a - b) for a, b in zip(x_whole, x_rest)) / scale
+    # p is the 5th value of the internals line (third line of each Gauss point)
+    def p_values(path):
+        lines = Path(path).read_text().splitlines()
+        return [float(line.split()[4].replace("D", "E")) if len(line.split()) == 6 else
+                float(line[56:70].replace("D", "E"))
+                for line in lines if len(line) >= 84 and line.count("D") == 6]
+    p_whole = p_values(work / "whole" / "OUTBOX" / "GPV.OUT.1")
+    p_rest = p_values(work / "second" / "OUTBOX" / "GPV.OUT.1")
+    dp = max(abs(a - b) for a, b in zip(p_whole, p_rest)) / max(p_whole)
+    ok_x, ok_p = dx <= 1e-6 and len(x_whole) == len(x_rest), dp <= 1e-5 and len(p_whole) == len(p_rest) > 0
+    print(f"{'ok  ' if ok_x else 'FAIL'} node displacements at step 200: max relative difference {dx:.2e} (1e-6)")
+    print(f"{'ok  ' if ok_p else 'FAIL'} cumulative plastic strain p at step 200: max relative difference {dp:.2e} (1e-5),"
+          f" {len(p_whole)} Gauss points")
+    return 0 if ok_x and ok_p else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
