@@ -11,8 +11,9 @@ used by every script of the repository.
     res.force_on(i, body), res.pair(a, b)    # helpers of the validation checks
 
 Nothing assumes rigid bodies beyond what the file says: body arrays take their shape from
-the file (3 dofs per rigid 2D body), and a /mesh group (meshed bodies) or a mesh group in
-a snapshot is read as a dict of arrays (Run.mesh, Snapshot.mesh).
+the file (3 dofs per rigid 2D body), and a /mesh group (meshed bodies) is read as a dict of arrays (Run.mesh, its attributes
+Run.mesh_attrs), and a snapshot's mesh data (a mesh group, the mesh_* datasets and the
+cracks group Fracas writes) as Snapshot.mesh.
 
 Positions: /bodies/reference holds the reference configuration (BODIES.DAT node
 coordinates) and snapshot X the displacement from it, as LMGC90's DOF files: position =
@@ -157,6 +158,14 @@ class Run:
         groups as nested dicts), empty without meshed bodies."""
         return _group_arrays(self.file["mesh"]) if "mesh" in self.file else {}
     @property
+    def mesh_attrs(self):
+        """The attributes of the /mesh group (plane, gauss_point_fields,
+        interface_families, ...), empty without meshed bodies."""
+        if "mesh" not in self.file:
+            return {}
+        return {k: _attr(v) for k, v in self.file["mesh"].attrs.items()}
+
+    @property
     def n_bodies(self):
         for k in ("number", "mass", "radius"):
             if k in self.bodies:
@@ -264,6 +273,11 @@ class Run:
         step = int(_attr(g.attrs.get("step", 0)))
         time = float(_attr(g.attrs.get("time", float("nan"))))
         mesh = _group_arrays(g["mesh"]) if "mesh" in g else {}
+        # Fracas writes a snapshot's mesh data at its top level: mesh_X, mesh_V,
+        # mesh_gauss_points, ... and the group cracks (doc/output_layout.md §5)
+        for k, obj in g.items():
+            if k.startswith("mesh_") or k == "cracks":
+                mesh[k] = _group_arrays(obj) if isinstance(obj, _h5py().Group) else obj[()]
         return Snapshot(name, step, time, X, V, contacts, pos, mesh)
 
     def snapshot_times(self):

@@ -8,6 +8,8 @@
     python3 tools/hydride/campaign.py one --root runs/hydride --index $SLURM_ARRAY_TASK_ID
     # the list of cases (index seed bonding h)
     python3 tools/hydride/campaign.py list
+    # summaries again (summary.json, crack.png) of the cases already run, nothing rerun
+    python3 tools/hydride/campaign.py summarize --root runs/hydride
 
 Case folders are ROOT/<bonding>_h<h in nm>_s<seed>/ with DATBOX/, OUTBOX/, POSTPRO/,
 DISPLAY/, hydrides.json, summary.json (hydride_post.summary plus the wall and processor
@@ -111,7 +113,7 @@ def summarize_case(d, a):
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         fig, ax = plt.subplots(figsize=(5, 5))
-        post.draw(post.Run(d), ax, title=f"{s['bonding']} bonding, seed {s['seed']}, h {s['h'] * 1e6:.2g} µm")
+        post.draw(post.PlateRun(d), ax, title=f"{s['bonding']} bonding, seed {s['seed']}, h {s['h'] * 1e6:.2g} µm")
         fig.tight_layout()
         fig.savefig(d / "crack.png", dpi=120)
         plt.close(fig)
@@ -122,7 +124,7 @@ def summarize_case(d, a):
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("what", choices=("all", "one", "list"))
+    p.add_argument("what", choices=("all", "one", "list", "summarize"))
     p.add_argument("--root", default="runs/hydride")
     p.add_argument("--index", type=int, help="case index for 'one' (SLURM_ARRAY_TASK_ID)")
     p.add_argument("--seeds", type=int, nargs="+", default=DEFAULTS["seeds"])
@@ -142,6 +144,13 @@ def main(argv=None):
     if a.what == "list":
         for k, c in enumerate(cases):
             print(k, *c, case_name(*c))
+        return 0
+    if a.what == "summarize":
+        for c in cases:
+            d = Path(a.root) / case_name(*c)
+            if (d / "timing.json").is_file():
+                summarize_case(d, a)
+                print(f"{case_name(*c)}: summarised", flush=True)
         return 0
     fracas = find_fracas(a.fracas)
     Path(a.root).mkdir(parents=True, exist_ok=True)

@@ -157,7 +157,7 @@ def figures(rows, out, picture_seed):
         for r in rows:
             if r["h_um"] != h:
                 continue
-            fd = post.force_displacement(post.Run(Path(r["dir"])))
+            fd = post.force_displacement(post.PlateRun(Path(r["dir"])))
             ax.plot(fd["strain"] * 100, fd["stress"] / 1e6, color=BOND_COLOR[r["bonding"]], lw=0.8,
                     label=r["bonding"] if r["seed"] == min(rr["seed"] for rr in rows) else None)
         ax.set_title(f"h {h:.2g} µm", fontsize=9)
@@ -208,7 +208,7 @@ def figures(rows, out, picture_seed):
             if not r:
                 ax.axis("off")
                 continue
-            run = post.Run(Path(r[0]["dir"]))
+            run = post.PlateRun(Path(r[0]["dir"]))
             c = post.macro_crack(run)
             post.draw(run, ax, c, legend=(i == 0 and j == 1),
                       title=f"{b} bonding, seed {picture_seed}, h {h:.2g} µm: " + ", ".join(

@@ -2,7 +2,7 @@
 """Results of a hydrided-plate run (tools/hydride/hydride_plate.py): the macro-crack and
 where it runs, microcracks, force-displacement curve, energy split; a picture.
 
-    python3 tools/hydride/hydride_post.py CASE_DIR [--json OUT.json] [--png OUT.png]
+    python3 tools/hydride/hydride_post.py CASE_DIR [--deck DECK_DIR] [--json OUT.json] [--png OUT.png]
 
 Reads CASE_DIR/hydrides.json (the microstructure), CASE_DIR/OUTBOX/fracas.h5 (the
 interface edges and their state, the energy series) and CASE_DIR/POSTPRO/Dep_, Fint_
@@ -25,14 +25,13 @@ Definitions (doc/hydrided_zircaloy.md §4):
 """
 import argparse
 import json
-import os
 import sys
 from pathlib import Path
 
 import numpy as np
 
-os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")
-import h5py  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from fracas_tools.results import Run  # noqa: E402
 
 FAMILY_LABEL = {"HY_HY": "through hydrides", "HY_MA": "along matrix/hydride interfaces",
                 "MA_MA": "through the matrix"}
@@ -40,37 +39,35 @@ FAMILY_COLOR = {"HY_HY": "#1f3fbf", "HY_MA": "#f08c00", "MA_MA": "#d62728"}
 PHASE_COLOR = {"matrix": "#dcdcdc", "hydride": "#9ec5e8"}
 
 
-class Run:
+class PlateRun:
     """One run's mesh, interfaces and final state (or snapshot ``snapshot``, 1-based,
-    negative from the end). case_dir holds OUTBOX/ and POSTPRO/; deck_dir (default
-    case_dir) the generator's hydrides.json (the run may be written elsewhere with
-    fracas --output)."""
+    negative from the end), read with fracas_tools.results. case_dir holds OUTBOX/ and
+    POSTPRO/; deck_dir (default case_dir) the generator's hydrides.json (the run may be
+    written elsewhere with fracas --output)."""
 
     def __init__(self, case_dir, snapshot=-1, deck_dir=None):
         self.case_dir = Path(case_dir)
         self.info = json.loads((Path(deck_dir or case_dir) / "hydrides.json").read_text())
-        with h5py.File(self.case_dir / "OUTBOX" / "fracas.h5", "r") as f:
-            self.complete = int(f.attrs.get("complete", 0))
-            m = f["mesh"]
-            self.ref = m["reference"][:]                                   # (nn, 2)
-            self.body_first_node = m["body_first_node"][:]                 # 1-based, nb + 1
-            self.element_nodes = m["element_nodes"][:].reshape(-1, 3) - 1  # T3, 0-based
-            self.families = m.attrs["interface_families"].split()
-            self.edge_nodes = m["interface_edge_nodes"][:] - 1              # (ne, 2) 0-based
-            self.edge_family = np.array(self.families)[m["interface_edge_family"][:] - 1]
-            self.edge_length = m["interface_edge_length"][:]
-            self.series = {k: f["series"][k][:] for k in f["series"]}
-            names = sorted(f["snapshots"])
-            snap = f["snapshots"][names[snapshot if snapshot < 0 else snapshot - 1]]
-            self.step = int(snap.attrs["step"])
-            self.time = float(snap.attrs["time"])
-            self.X = snap["mesh_X"][:]
-            c = snap["cracks"]
-            self.edge_broken_step = c["edge_broken_step"][:]
-            self.edge_beta = c["edge_beta"][:]
-            self.damage_per_family = dict(zip(self.families, c["damage_per_family"][:]))
-            self.fragment_of_body = c["fragment_of_body"][:]
-            self.gauss = snap["mesh_gauss_points"][:]
+        with Run(self.case_dir) as run:
+            self.complete = int(run.complete)
+            m = run.mesh
+            self.ref = m["reference"]                                      # (nn, 2)
+            self.body_first_node = m["body_first_node"]                    # 1-based, nb + 1
+            self.element_nodes = m["element_nodes"].reshape(-1, 3) - 1     # T3, 0-based
+            self.families = run.mesh_attrs["interface_families"].split()
+            self.edge_nodes = m["interface_edge_nodes"] - 1                 # (ne, 2) 0-based
+            self.edge_family = np.array(self.families)[m["interface_edge_family"] - 1]
+            self.edge_length = m["interface_edge_length"]
+            self.series = run.series
+            snap = run.snapshot(snapshot if snapshot < 0 else snapshot - 1)
+            self.step, self.time = snap.step, snap.time
+            self.X = snap.mesh["mesh_X"]
+            c = snap.mesh["cracks"]
+            self.edge_broken_step = c["edge_broken_step"]
+            self.edge_beta = c["edge_beta"]
+            self.damage_per_family = dict(zip(self.families, c["damage_per_family"]))
+            self.fragment_of_body = c["fragment_of_body"]
+            self.gauss = snap.mesh["mesh_gauss_points"]
         nb = len(self.body_first_node) - 1
         self.node_body = np.repeat(np.arange(nb), np.diff(self.body_first_node))
         centroids = self.ref[self.element_nodes].mean(axis=1)
@@ -225,7 +222,7 @@ def energies(run):
 
 
 def summary(case_dir, deck_dir=None):
-    run = Run(case_dir, deck_dir=deck_dir)
+    run = PlateRun(case_dir, deck_dir=deck_dir)
     crack = macro_crack(run)
     fd = force_displacement(run)
     en = energies(run)
@@ -287,10 +284,11 @@ def draw(run, ax, crack=None, magnify=1.0, legend=True, title=None):
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("case_dir")
+    p.add_argument("--deck", help="folder of hydrides.json when the run was written elsewhere (fracas --output)")
     p.add_argument("--json", help="write the summary there")
     p.add_argument("--png", help="draw the final crack path there")
     a = p.parse_args(argv)
-    s = summary(a.case_dir)
+    s = summary(a.case_dir, deck_dir=a.deck)
     c = s["crack"]
     print(f"{a.case_dir}: {s['bonding']} seed {s['seed']}, {s['elements']} elements, step {s['steps']}; "
           f"macro-crack {'across' if c['separated'] else '(ligament %.1f µm left)' % (1e6 * c['ligament'])} "
@@ -305,7 +303,7 @@ def main(argv=None):
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         fig, ax = plt.subplots(figsize=(5, 5))
-        run = Run(a.case_dir)
+        run = PlateRun(a.case_dir, deck_dir=a.deck)
         draw(run, ax, title=f"{s['bonding']} bonding, seed {s['seed']}, step {s['steps']}")
         fig.tight_layout()
         fig.savefig(a.png, dpi=150)

@@ -101,3 +101,18 @@ def test_mesh_phases_families_and_laws(tmp_path):
 def test_thin_hydrides_refused(tmp_path):
     with pytest.raises(ValueError, match="two elements"):
         hp.generate(tmp_path / "x", 1, 1.5e-6, "weak", SMALL, steps=10)
+
+
+def test_ctest_decks_are_the_generators(tmp_path):
+    """The committed decks of validation.hydrided_plate are what gen.py writes today
+    (a change of the generator that moves them shows here, not as a changed result)."""
+    import importlib.util
+    here = Path(__file__).resolve().parents[2] / "test_cases" / "validation" / "hydrided_plate"
+    spec = importlib.util.spec_from_file_location("hydrided_plate_gen", here / "gen.py")
+    gen = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gen)
+    gen.write(tmp_path / "weak", "weak")
+    files = sorted(p.name for p in (here / "weak" / "DATBOX").iterdir())
+    match, mismatch, errors = filecmp.cmpfiles(here / "weak" / "DATBOX", tmp_path / "weak" / "DATBOX", files,
+                                               shallow=False)
+    assert mismatch == [] and errors == []

@@ -66,6 +66,7 @@ def test_meshed_layout_is_read(h5):
         m = f.create_group("mesh")
         m["nodes"] = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
         m["elements"] = np.array([[1, 2, 3]])
+        m.attrs["interface_families"] = "MA_MA HY_MA"
         for name in f["snapshots"]:
             g = f["snapshots"][name]
             for k in ("X", "V"):
@@ -73,6 +74,8 @@ def test_meshed_layout_is_read(h5):
                 del g["bodies"][k]
                 g["bodies"][k] = a
             g.create_group("mesh")["stress"] = np.ones((1, 4))
+            g["mesh_X"] = np.zeros((3, 2))
+            g.create_group("cracks")["edge_beta"] = np.array([1.0, 0.0])
     res = Results(h5)
     assert res.body_model == "MAILx"
     assert res.X.shape[2] == 2 and res.position.shape == res.X.shape
@@ -80,6 +83,8 @@ def test_meshed_layout_is_read(h5):
     assert res.mesh["elements"].tolist() == [[1, 2, 3]]
     snap = res.snapshot(-1)
     assert snap.X.shape == (nb, 2) and snap.mesh["stress"].shape == (1, 4)
+    assert snap.mesh["mesh_X"].shape == (3, 2) and snap.mesh["cracks"]["edge_beta"].tolist() == [1.0, 0.0]
+    assert res.mesh_attrs["interface_families"] == "MA_MA HY_MA"
 
 
 def test_checker_counts():

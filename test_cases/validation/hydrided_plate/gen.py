@@ -13,9 +13,16 @@ GEOMETRY = hp.Geometry(width=16e-6, height=16e-6, thickness=(2e-6, 2.2e-6), aspe
                        clearance=0.8e-6, notch=2.5e-6)
 SEED, H, DT, STEPS = 2, 1e-6, 2e-10, 300
 
+
+
+def write(case_dir, bonding):
+    """The deck of one bonding case in case_dir (DATBOX/ and hydrides.json)."""
+    return hp.generate(case_dir, SEED, H, bonding, GEOMETRY, hp.Loading(velocity=10.0),
+                       time_step=DT, steps=STEPS, output_every=STEPS)
+
+
 if __name__ == "__main__":
     for bonding in ("weak", "strong"):
-        info = hp.generate(HERE / bonding, SEED, H, bonding, GEOMETRY, hp.Loading(velocity=10.0),
-                           time_step=DT, steps=STEPS, output_every=STEPS)
+        info = write(HERE / bonding, bonding)
         print(f"{bonding}: {info['elements']} elements, {len(info['hydrides'])} hydrides, "
               f"alert {info['alert']:.3g} m")
