@@ -116,3 +116,23 @@ def test_ctest_decks_are_the_generators(tmp_path):
     match, mismatch, errors = filecmp.cmpfiles(here / "weak" / "DATBOX", tmp_path / "weak" / "DATBOX", files,
                                                shallow=False)
     assert mismatch == [] and errors == []
+
+
+def test_phases_when_the_matrix_centre_falls_in_a_hydride():
+    """Seed 4 of the default plate puts a hydride over the plate's centre, where the
+    matrix's centre of mass lies: the phases must still come out right (the hydride
+    elements cover the placed area, 20 % of the plate)."""
+    g = hp.Geometry()
+    hyd = hp.place_hydrides(g, 4)
+    assert any(x < g.width / 2 < x + length and y < g.height / 2 < y + t for x, y, length, t in hyd)
+    mesh = hp.build_mesh(g, hyd, 1e-6)
+    xy = mesh.nodes
+    area = sum(0.5 * abs(np.cross(xy[n[1]] - xy[n[0]], xy[n[2]] - xy[n[0]]))
+               for (_, n), ph in zip(mesh.elements, mesh.phases) if ph == "hydride")
+    assert area / (g.width * g.height) == pytest.approx(g.area_fraction, rel=1e-9)
+
+
+def test_hydride_surface_by_bounding_box():
+    boxes = [(2.0, 2.0, 10.0, 2.0)]
+    assert hp.is_hydride_surface((2.0, 2.0, 0.0, 12.0, 4.0, 0.0), boxes, 1e-6)
+    assert not hp.is_hydride_surface((0.0, 0.0, 0.0, 32.0, 32.0, 0.0), boxes, 1e-6)   # the matrix
