@@ -89,7 +89,7 @@ def markdown(rows):
                    + " | ".join(pm([r[f'share_{f}'] for r in rs], '{:.0f} %', 100) for f in FAMILIES)
                    + f" | {pm([r['microcracks'] for r in rs])} | {pm([r['microcrack_edges'] for r in rs])} | "
                    f"{pm([r['peak_MPa'] for r in rs])} | {pm([r['cpu_s'] for r in rs])} |")
-    out += ["", "Energy at the end (per µm of thickness: µJ/m = 1e-6 J/m; mean over seeds):", "",
+    out += ["", "Energy at the end (µJ per metre of thickness, 1e-6 J/m; mean over seeds):", "",
             "| bonding | h (µm) | work of the drives | plastic | damage MA_MA | damage HY_HY | damage HY_MA "
             "| friction + numerical | kinetic | elastic | balance error / work |", "|" + " --- |" * 11]
     for (b, h), rs in g.items():
