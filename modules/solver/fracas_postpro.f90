@@ -115,11 +115,14 @@ contains
       end associate
     end do
     if (.not. allocated(pp%sets)) allocate (pp%sets(0))
-    do k = 1, n
-      if ((cmds(k)%kind == pp_dep .or. cmds(k)%kind == pp_fint) .and. size(pp%sets) == 0) &
-        call input_error(commands(1)%src%file, 0, 0, 'Dep EVOLUTION and Fint EVOLUTION need node sets: '// &
-                         "declare them with 'NEW MECAx SETS' first")
-    end do
+    ! LMGC90 writes one Dep_/Fint_ file per node set: without sets there is nothing to write
+    if (size(pp%sets) == 0 .and. any(cmds(1:n)%kind == pp_dep .or. cmds(1:n)%kind == pp_fint)) then
+      call warn("POSTPRO.DAT: Dep EVOLUTION and Fint EVOLUTION without node sets ('NEW MECAx SETS'): "// &
+                'nothing to write, skipped')
+      j = count(cmds(1:n)%kind /= pp_dep .and. cmds(1:n)%kind /= pp_fint)
+      cmds(1:j) = pack(cmds(1:n), cmds(1:n)%kind /= pp_dep .and. cmds(1:n)%kind /= pp_fint)
+      n = j
+    end if
     pp%cmds = cmds(1:n)
     pp%active = n > 0
     if (.not. pp%active) return

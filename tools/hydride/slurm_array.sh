@@ -11,9 +11,10 @@
 # Adapt to the cluster: partition/account lines, the module loads (a Fortran runtime,
 # HDF5, SuiteSparse, LAPACK as the build used; Python 3 with numpy, scipy, h5py,
 # matplotlib and gmsh), and the time limit. One case is one serial fracas run: on
-# this project's 2-core workstation the 4k-element plates took a few minutes of
-# processor time and the 8k-element ones about 3 times that (doc/hydrided_zircaloy.md
-# §6); 1 hour per task leaves a wide margin. Memory stays below 200 MB per case.
+# this project's workstation a 2650-element plate (h = 1 um, 812 steps) took 44-78 s
+# of processor time and a 5200-element one (h = 0.7 um, 1160 steps) H07_CPU
+# (doc/hydrided_zircaloy.md §7); 1 hour per task leaves a wide margin. Memory stays
+# about 80 MB at 5200 elements.
 #
 #SBATCH --job-name=fracas-hydride
 #SBATCH --array=0-19
