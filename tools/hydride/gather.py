@@ -8,8 +8,9 @@ Reads ROOT/*/summary.json (and the runs' files for the curves and pictures), wri
 DIR (default ROOT):
 
     cases.csv             one row per case
-    summary.md            Markdown tables: per case, and per bonding x element size the
-                          mean +- standard deviation over seeds; the paper's claim as
+    summary.md            Markdown tables: per bonding x element size the mean +-
+                          standard deviation over seeds of the shares, energies and
+                          runtimes; the paper's claim as
                           numbers (strong - weak share through hydrides, weak - strong
                           share along interfaces, per seed)
     hydride_shares.png    macro-crack shares per family, bonding x element size (bars: mean,
@@ -62,7 +63,7 @@ def flat(s):
     r.update(friction=e["friction_and_numerical"], kinetic=e["kinetic"], elastic=e["elastic"],
              balance_rel=e["relative_balance_error"], cpu_s=s.get("cpu_seconds_process", s["cpu_seconds"]),
              step_cpu_s=s["cpu_seconds"], wall_s=s.get("wall_seconds", float("nan")),
-             load=s.get("load_average", float("nan")))
+             load=s.get("load_average", float("nan")), sweeps=s.get("sweeps", float("nan")))
     return r
 
 
@@ -97,6 +98,14 @@ def markdown(rows):
         out.append(f"| {b} | {h:.2g} | {m('work'):.0f} | {m('plastic'):.0f} | {m('damage_MA_MA'):.1f} | "
                    f"{m('damage_HY_HY'):.1f} | {m('damage_HY_MA'):.1f} | {m('friction'):.1f} | {m('kinetic'):.1f} | "
                    f"{m('elastic'):.1f} | {max(r['balance_rel'] for r in rs):.1e} (max) |")
+    out += ["", "Runtime (processor time of the fracas process; mean ± standard deviation over seeds):", "",
+            "| bonding | h (µm) | elements | steps | processor time per case (s) | per element and step (s) "
+            "| NLGS sweeps per step | wall time (s) |", "|" + " --- |" * 8]
+    for (b, h), rs in g.items():
+        per = [r["cpu_s"] / (r["elements"] * r["steps"]) for r in rs]
+        out.append(f"| {b} | {h:.2g} | {np.mean([r['elements'] for r in rs]):.0f} | "
+                   f"{np.mean([r['steps'] for r in rs]):.0f} | {pm([r['cpu_s'] for r in rs])} | "
+                   f"{np.mean(per):.2e} | {pm([r['sweeps'] for r in rs])} | {pm([r['wall_s'] for r in rs])} |")
     # the claim, seed by seed (same microstructure for both bondings)
     out += ["", "The paper's claim, seed by seed (same hydrides, same mesh; percentage points):", "",
             "| h (µm) | seed | HY_HY share strong − weak | HY_MA share weak − strong |", "| --- | --- | --- | --- |"]

@@ -54,3 +54,6 @@ def test_table_and_claim(root):
     assert c["through_hydrides"] == pytest.approx((np.mean(dh), np.std(dh, ddof=1), min(dh)))
     assert c["along_interfaces"] == pytest.approx((np.mean(di), np.std(di, ddof=1), min(di)))
     assert "| 1 | 2 | +10 | +20 |" in text       # seed 2 row of the claim table
+    # runtime: weak processor times 81, 82, 83 s over 2601..2603 elements x 800 steps
+    run = next(line for line in text.splitlines() if line.startswith("| weak | 1 | 2602 | 800 |"))
+    assert "| 82 ± 1 | " in run and f"| {82 / (2602 * 800):.2e} |" in run
