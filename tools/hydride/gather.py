@@ -220,7 +220,7 @@ def figures(rows, out, picture_seed):
             run = post.PlateRun(Path(r[0]["dir"]))
             c = post.macro_crack(run)
             post.draw(run, ax, c, legend=(i == 0 and j == 1),
-                      title=f"{b} bonding, seed {picture_seed}, h {h:.2g} µm: " + ", ".join(
+                      title=f"{b} bonding, seed {picture_seed}, h {h:.2g} µm\n" + ", ".join(
                           f"{f} {100 * c['shares'][f]:.0f} %" for f in FAMILIES))
     fig.tight_layout()
     fig.savefig(out / "hydride_cracks.png", dpi=130)
