@@ -174,9 +174,10 @@ contains
     end if
     if (unconverged > 0) then
       block
-        character(len=200) :: msg
-        write (msg, '(i0,a,i0,a,i0,a)') unconverged, ' of ', nsteps, ' steps reached the NLGS sweep limit without '// &
-          'converging (the first: step ', first_unconverged, '; OUTBOX/fracas.h5 series/converged = 0 marks them)'
+        character(len=300) :: msg
+        write (msg, '(i0,a,i0,a,i0,a)') unconverged, ' of ', nsteps, ' steps reached the NLGS sweep limit or '// &
+          'newton_max_iterations without converging (the first: step ', first_unconverged, &
+          '; OUTBOX/fracas.h5 series/converged = 0 marks them)'
         if (deck%run%nlgs_unconverged == 'fail') call stop_run(trim(msg)//' (nlgs_unconverged = fail)', &
                                                               exit_unconverged)
         call warn(trim(msg))

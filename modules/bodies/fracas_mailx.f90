@@ -16,11 +16,13 @@
 !> velocity-driven dof holds its imposed end-of-step value throughout and
 !> starts the step at its imposed value (run control driven_start).
 module fracas_mailx
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, input_error
+  use fracas_strings, only: itoa, rtoa
   use fracas_deck, only: deck_t, element_input_t, model_input_t
   use fracas_drives, only: drive_t, drive_from_input, drive_value
-  use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response
+  use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, el_geometry_ok, el_area
   use fracas_bulk, only: bulk_t, bulk_j2, plane_strain, plane_stress, gp_size, bulk_from_material, &
                          gp_pxx, gp_pzz, gp_p
   use fracas_sparse, only: sparse_t, sparse_from_triplets, sparse_matvec
@@ -28,7 +30,7 @@ module fracas_mailx
                                   factor_method_name, dense_spd_inverse
   implicit none
   private
-  public :: mailx_t, mailx_build, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
+  public :: mailx_t, mailx_build, mailx_restore_state, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
             mailx_dense_max, mailx_gauss_values
@@ -116,6 +118,7 @@ contains
     real(wp), intent(in) :: h, theta
     integer :: ib, b, nn, ne, ie, k, j, nel_nodes, ng, imat, kind, node
     logical, allocatable :: used(:)
+    real(wp) :: extent
     m%h = h
     m%theta = theta
     m%time = deck%dof_time
@@ -168,6 +171,7 @@ contains
         m%ref(:, m%node_first(b):m%node_first(b + 1) - 1) = bd%node_coor
         m%nonlinear(b) = .false.
         m%lumped(b) = .true.
+        extent = norm2(maxval(bd%node_coor, dim=2) - minval(bd%node_coor, dim=2))
         do ie = 1, size(bd%elements)
           ne = ne + 1
           associate (el => bd%elements(ie))
@@ -190,6 +194,7 @@ contains
               if (el%nodes(j) < 1 .or. el%nodes(j) > size(bd%node_coor, 2)) call input_error(el%src%file, &
                 el%src%line, 16, 'element node number out of range for this body')
             end do
+            call check_element_geometry(m%el_kind(ne), bd%node_coor(:, el%nodes), extent, el%src%file, el%src%line)
             m%el_nodes(m%el_first(ne):m%el_first(ne) + size(el%nodes) - 1) = m%node_first(b) - 1 + el%nodes
             m%el_first(ne + 1) = m%el_first(ne) + size(el%nodes)
             m%el_gp(ne + 1) = m%el_gp(ne) + el_ngauss(m%el_kind(ne))
@@ -237,7 +242,15 @@ contains
     m%gp_begin = m%gp
     m%elastic = elastic_energy(m)
     m%kinetic0 = mailx_kinetic_energy(m)
-    do b = 1, m%n
+    b = 0
+    do ib = 1, size(deck%bodies)
+      if (deck%bodies(ib)%model /= 'MAILx') cycle
+      b = b + 1
+      ! Coordinates, material values or a time step beyond double precision make
+      ! M + h²θ²K overflow: say so at the body rather than as a failed factorization.
+      if (.not. iteration_matrix_finite(m, b)) call input_error(deck%bodies(ib)%src%file, &
+        deck%bodies(ib)%src%line, 0, 'MAILx body '//itoa(b)//': its iteration matrix M + (h theta)^2 K '// &
+        'is not finite (node coordinates, density, Young''s modulus or time step beyond double precision)')
       call factorize_body(m, b)
     end do
     call compliance_sets_init(m)
@@ -517,6 +530,7 @@ contains
     real(wp), allocatable :: a(:, :), ai(:, :), av(:)
     type(sparse_t) :: aff
     real(wp) :: c2
+    logical :: ok
     nd = body_ndof(m, b)
     n0 = m%node_first(b)
     fidx = pack([(i, i=1, nd)], .not. reshape(m%driven(:, n0:m%node_first(b + 1) - 1), [nd]))
@@ -534,7 +548,9 @@ contains
       m%dinv(m%dfirst(b) + 1:m%dfirst(b) + nd * nd) = 0.0_wp
       if (nf > 0) then
         ai = a(fidx, fidx)
-        call dense_spd_inverse(ai)
+        call dense_spd_inverse(ai, ok)
+        if (.not. ok) call fatal('MAILx body '//itoa(b)//': its iteration matrix M + (h theta)^2 K is not '// &
+          'positive definite (a density, Young''s modulus or time step out of proportion with the others?)')
         do j = 1, nf
           do i = 1, nf
             m%dinv(m%dfirst(b) + fidx(i) + nd * (fidx(j) - 1)) = ai(i, j)
@@ -579,6 +595,42 @@ contains
       if (allocated(bb%c)) deallocate (bb%c)
     end associate
   end subroutine factorize_body
+
+  !> An element must be counter-clockwise with a positive Jacobian everywhere,
+  !> and not so small against its body's extent that double precision cannot
+  !> resolve it (its size below 1e-10 of the extent: node coordinates then
+  !> carry fewer than 6 significant digits of the element).
+  subroutine check_element_geometry(kind, x, extent, file, line)
+    integer, intent(in) :: kind, line
+    real(wp), intent(in) :: x(:, :), extent
+    character(len=*), intent(in) :: file
+    real(wp) :: size_el
+    if (.not. all(ieee_is_finite(x))) call input_error(file, line, 0, 'element has non-finite node coordinates')
+    if (.not. el_geometry_ok(kind, x)) call input_error(file, line, 0, 'element is inverted or degenerate '// &
+      '(its Jacobian is not positive everywhere): list its nodes counter-clockwise, corners first')
+    size_el = sqrt(el_area(kind, x))
+    if (.not. (size_el >= 1.0e-10_wp * extent)) call input_error(file, line, 0, 'element of size '// &
+      rtoa(size_el)//' in a body '//rtoa(extent)//' across: beyond what double precision resolves '// &
+      '(a node far from the others?)')
+  end subroutine check_element_geometry
+
+  !> Are the entries of body b's iteration matrix M + (h θ)² K all finite?
+  logical function iteration_matrix_finite(m, b) result(ok)
+    type(mailx_t), intent(in) :: m
+    integer, intent(in) :: b
+    real(wp) :: c2
+    c2 = (m%h * m%theta)**2
+    ok = all(ieee_is_finite(m%mdiag(:, m%node_first(b):m%node_first(b + 1) - 1)))
+    if (m%dense(b)) then
+      associate (k => m%dk(m%dfirst(b) + 1:m%dfirst(b + 1)), ms => m%dm(m%dfirst(b) + 1:m%dfirst(b + 1)))
+        ok = ok .and. all(ieee_is_finite(ms)) .and. all(ieee_is_finite(k)) .and. all(ieee_is_finite(c2 * k + ms))
+      end associate
+    else
+      associate (k => m%big(b)%kv, ms => m%big(b)%mv)
+        ok = ok .and. all(ieee_is_finite(ms)) .and. all(ieee_is_finite(k)) .and. all(ieee_is_finite(c2 * k + ms))
+      end associate
+    end if
+  end function iteration_matrix_finite
 
   !> x := A_ff⁻¹ x on body b (x as in body_k_times; driven dofs of x are
   !> ignored on input and zero on output).
@@ -688,6 +740,11 @@ contains
   !> are after one iteration. Otherwise the next iterate is prepared (residual
   !> and free velocity at the new velocities) and the unbalanced force on the
   !> free dofs |R + r| is compared with tol times the force scale of the step.
+  !> The internal forces count with the larger of their start and end values: the
+  !> end stresses are the start ones plus increments, so their round-off is
+  !> relative to both (a J2 body unloading through zero stress has Fi ~ 0 at the
+  !> step end, and a scale of the end forces alone was out of reach of round-off:
+  !> newton_max_iterations reached at every such step).
   logical function mailx_converged(m, tol, max_iterations) result(done)
     type(mailx_t), intent(inout) :: m
     real(wp), intent(in) :: tol
@@ -698,8 +755,8 @@ contains
     if (.not. m%any_nonlinear) return
     call mailx_iterate(m)
     unbalanced = sqrt(sum((m%res + m%imp)**2, mask=.not. m%driven))
-    scale = sqrt(sum((m%h * m%fext)**2)) + sqrt(sum((m%h * m%fint)**2)) + sqrt(sum(m%imp**2)) + &
-            sqrt(sum((m%mdiag * (m%v - m%vbegin))**2))
+    scale = sqrt(sum((m%h * m%fext)**2)) + m%h * max(sqrt(sum(m%fint**2)), sqrt(sum(m%fint_begin**2))) + &
+            sqrt(sum(m%imp**2)) + sqrt(sum((m%mdiag * (m%v - m%vbegin))**2))
     m%newton_converged = unbalanced <= tol * max(scale, tiny(1.0_wp))
     done = m%newton_converged .or. m%iterations > max_iterations
   end function mailx_converged
@@ -757,6 +814,30 @@ contains
       end where
     end subroutine residual_at_end
   end subroutine mailx_end_step
+
+  !> Put the meshes into a saved end-of-step state (exact restart): nodal
+  !> displacements x and velocities v, Gauss-point states gp, internal forces
+  !> fint, and the energy accumulators energies = [kinetic0, work_gravity,
+  !> work_forces, work_supports, plastic_work]. Nonlinear bodies get their
+  !> tangent and factorization back from that state, as their next step would.
+  subroutine mailx_restore_state(m, x, v, gp, fint, energies)
+    type(mailx_t), intent(inout) :: m
+    real(wp), intent(in) :: x(:, :), v(:, :), gp(:, :), fint(:, :), energies(5)
+    integer :: b
+    m%xbegin = x; m%x = x
+    m%vbegin = v; m%v = v
+    m%gp_begin = gp; m%gp = gp
+    do b = 1, m%n
+      if (.not. m%nonlinear(b)) cycle
+      call assemble_body(m, b, m%xbegin, with_mass=.false.)
+      call factorize_body(m, b)
+    end do
+    m%gp = gp
+    m%fint_begin = fint; m%fint = fint
+    m%kinetic0 = energies(1); m%work_gravity = energies(2); m%work_forces = energies(3)
+    m%work_supports = energies(4); m%plastic_work = energies(5)
+    m%elastic = elastic_energy(m)
+  end subroutine mailx_restore_state
 
   !> Kinetic energy 1/2 V^T M V of all dofs (driven ones too: the drives' work
   !> is booked through the force they apply).

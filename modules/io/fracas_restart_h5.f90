@@ -12,6 +12,11 @@
 !>                 inter, an, sub, status (n), force, point (2, n), internals (5, n)
 !>     pairs       (4, np) broad-phase pairs kept between rough detections
 !>                 (candidate, antagonist, interaction, law), pair_alert (np)
+!>     mesh/       only with meshed bodies: X, V (2, nnodes), gp (gp_size, ngp),
+!>                 fint (2, nnodes), energies (5: kinetic0, work_gravity,
+!>                 work_forces, work_supports, plastic_work)
+!>     cracks/     only with cohesive interfaces of meshes: beta (npts),
+!>                 flags (3, npts: glued, seen, partner), broken_step (nedges)
 !>
 !> Layout in doc/output_layout.md; use in doc/restart.md.
 module fracas_restart_h5
@@ -42,6 +47,10 @@ module fracas_restart_h5
     real(wp), allocatable :: force(:, :), point(:, :), internals(:, :)
     integer, allocatable :: pairs(:, :)
     real(wp), allocatable :: pair_alert(:)
+    ! Meshed bodies (unallocated without) and their cohesive interfaces.
+    real(wp), allocatable :: mesh_x(:, :), mesh_v(:, :), mesh_gp(:, :), mesh_fint(:, :), mesh_energies(:)
+    real(wp), allocatable :: crack_beta(:)
+    integer, allocatable :: crack_flags(:, :), crack_broken_step(:)
   end type restart_state_t
 
 contains
@@ -87,6 +96,22 @@ contains
     call h5_close_group(gh)
     call h5_write_dataset(g, 'pairs', st%pairs)
     call h5_write_dataset(g, 'pair_alert', st%pair_alert)
+    if (allocated(st%mesh_x)) then
+      call h5_create_group(g, 'mesh', gh)
+      call h5_write_dataset(gh, 'X', st%mesh_x)
+      call h5_write_dataset(gh, 'V', st%mesh_v)
+      call h5_write_dataset(gh, 'gp', st%mesh_gp)
+      call h5_write_dataset(gh, 'fint', st%mesh_fint)
+      call h5_write_dataset(gh, 'energies', st%mesh_energies)
+      call h5_close_group(gh)
+    end if
+    if (allocated(st%crack_beta)) then
+      call h5_create_group(g, 'cracks', gh)
+      call h5_write_dataset(gh, 'beta', st%crack_beta)
+      call h5_write_dataset(gh, 'flags', st%crack_flags)
+      call h5_write_dataset(gh, 'broken_step', st%crack_broken_step)
+      call h5_close_group(gh)
+    end if
     call h5_close_group(g)
     call h5_write_attr(groot, 'last', int(st%step, ik))
     call h5_close_group(groot)
@@ -144,6 +169,22 @@ contains
     call h5_close_group(gh)
     call h5_read_dataset(g, 'pairs', st%pairs)
     call h5_read_dataset(g, 'pair_alert', st%pair_alert)
+    if (h5_exists(g, 'mesh')) then
+      call h5_open_group(g, 'mesh', gh)
+      call h5_read_dataset(gh, 'X', st%mesh_x)
+      call h5_read_dataset(gh, 'V', st%mesh_v)
+      call h5_read_dataset(gh, 'gp', st%mesh_gp)
+      call h5_read_dataset(gh, 'fint', st%mesh_fint)
+      call h5_read_dataset(gh, 'energies', st%mesh_energies)
+      call h5_close_group(gh)
+    end if
+    if (h5_exists(g, 'cracks')) then
+      call h5_open_group(g, 'cracks', gh)
+      call h5_read_dataset(gh, 'beta', st%crack_beta)
+      call h5_read_dataset(gh, 'flags', st%crack_flags)
+      call h5_read_dataset(gh, 'broken_step', st%crack_broken_step)
+      call h5_close_group(gh)
+    end if
     call h5_close_group(g)
     call h5_close_group(groot)
     call h5_close_file(fid)

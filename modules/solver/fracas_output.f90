@@ -992,7 +992,7 @@ contains
     balance = rep%kinetic + sc%meshes%elastic + sc%meshes%plastic_work + sc%cohesive_energy - sc%kinetic0 - &
               (wgrav + wforces + wsupports - sc%dissipated)
     call results_append_step(o%h5, [real(sc%step, wp), sc%time, real(rep%contacts, wp), &
-      real(rep%nlgs%nactive, wp), real(rep%nlgs%sweeps, wp), merge(1.0_wp, 0.0_wp, rep%nlgs%converged), &
+      real(rep%nlgs%nactive, wp), real(rep%nlgs%sweeps, wp), merge(1.0_wp, 0.0_wp, rep%nlgs%converged .and. rep%newton_converged), &
       rep%nlgs%residual, rep%nlgs%residual_onepq, rep%nlgs%quad_dv, rep%nlgs%maxm_dv, rep%nlgs%mean_dvor, &
       rep%kinetic, wgrav, wforces, wsupports, sc%dissipated, sc%cohesive_energy, &
       sc%damage_dissipated, balance, &

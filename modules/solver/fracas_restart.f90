@@ -12,6 +12,7 @@ module fracas_restart
   use fracas_scene, only: scene_t
   use fracas_restart_h5, only: restart_state_t, restart_h5_write, restart_h5_read
   use fracas_results_h5, only: results_h5_t
+  use fracas_mailx, only: mailx_restore_state
   implicit none
   private
   public :: restart_save, restart_load
@@ -62,6 +63,25 @@ contains
       st%pairs(4, :) = d%pair_law(1:n)
       st%pair_alert = d%pair_alert(1:n)
     end associate
+    associate (m => sc%meshes)
+      if (m%nnodes > 0) then
+        st%mesh_x = m%x
+        st%mesh_v = m%v
+        st%mesh_gp = m%gp
+        st%mesh_fint = m%fint
+        st%mesh_energies = [m%kinetic0, m%work_gravity, m%work_forces, m%work_supports, m%plastic_work]
+      end if
+    end associate
+    associate (cr => sc%cracks)
+      if (cr%npts > 0) then
+        st%crack_beta = cr%pt_beta
+        allocate (st%crack_flags(3, cr%npts))
+        st%crack_flags(1, :) = merge(1, 0, cr%pt_glued)
+        st%crack_flags(2, :) = merge(1, 0, cr%pt_seen)
+        st%crack_flags(3, :) = cr%pt_partner
+        st%crack_broken_step = cr%edge_broken_step
+      end if
+    end associate
     call restart_h5_write(r%fid, st)
   end subroutine restart_save
 
@@ -84,6 +104,26 @@ contains
       call fatal('restart from '//trim(path)//': contact history does not match the contactors')
     if (sc%contacts%with_cohesion .neqv. allocated(st%internals)) &
       call fatal('restart from '//trim(path)//': the deck and the restart point disagree on cohesive laws')
+    if (allocated(st%mesh_x) .neqv. sc%meshes%nnodes > 0) &
+      call fatal('restart from '//trim(path)//': the deck and the restart point disagree on meshed bodies')
+    if (allocated(st%mesh_x)) then
+      if (size(st%mesh_x, 2) /= sc%meshes%nnodes .or. size(st%mesh_gp, 2) /= sc%meshes%ngp) &
+        call fatal('restart from '//trim(path)//': the restart point has '//itoa(size(st%mesh_x, 2))// &
+                   ' mesh nodes and '//itoa(size(st%mesh_gp, 2))//' Gauss points, the deck '// &
+                   itoa(sc%meshes%nnodes)//' and '//itoa(sc%meshes%ngp))
+      call mailx_restore_state(sc%meshes, st%mesh_x, st%mesh_v, st%mesh_gp, st%mesh_fint, st%mesh_energies)
+    end if
+    if (allocated(st%crack_beta) .neqv. sc%cracks%npts > 0) &
+      call fatal('restart from '//trim(path)//': the deck and the restart point disagree on cohesive interfaces')
+    if (allocated(st%crack_beta)) then
+      if (size(st%crack_beta) /= sc%cracks%npts .or. size(st%crack_broken_step) /= sc%cracks%nedges) &
+        call fatal('restart from '//trim(path)//': cohesive interfaces do not match the deck')
+      sc%cracks%pt_beta = st%crack_beta
+      sc%cracks%pt_glued = st%crack_flags(1, :) == 1
+      sc%cracks%pt_seen = st%crack_flags(2, :) == 1
+      sc%cracks%pt_partner = st%crack_flags(3, :)
+      sc%cracks%edge_broken_step = st%crack_broken_step
+    end if
     sc%step = st%step
     sc%steps_done = st%steps_done
     sc%time = st%time

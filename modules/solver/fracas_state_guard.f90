@@ -18,7 +18,7 @@ module fracas_state_guard
   use fracas_kinds, only: wp
   use fracas_deck, only: deck_t, source_t
   use fracas_errors, only: input_error
-  use fracas_ids, only: inter_names
+  use fracas_ids, only: inter_names, bm_mesh
   use fracas_drives, only: drive_value
   use fracas_rbdy2, only: rbdy2_kinetic_energy
   use fracas_scene, only: scene_t
@@ -222,6 +222,28 @@ contains
               rtoa(sc%dissipated)//'): masses, forces or velocities beyond double precision'
         return
       end if
+      associate (m => sc%meshes)
+        if (m%nnodes > 0) then
+          if (.not. (all(ieee_is_finite(m%x)) .and. all(ieee_is_finite(m%v)))) then
+            do k = 1, m%nnodes
+              if (.not. (all(ieee_is_finite(m%x(:, k))) .and. all(ieee_is_finite(m%v(:, k))))) then
+                msg = 'MAILx body '//itoa(m%node_body(k))//' has a non-finite displacement or velocity at node '// &
+                      itoa(k - m%node_first(m%node_body(k)) + 1)//' (X '//vec(m%x(:, k))//', V '//vec(m%v(:, k))//')'
+                return
+              end if
+            end do
+          end if
+          if (.not. all(ieee_is_finite(m%gp))) then
+            msg = 'a MAILx body has a non-finite Gauss-point state (stress, strain or plastic strain)'
+            return
+          end if
+          if (.not. all(ieee_is_finite([m%elastic, m%plastic_work, m%work_gravity, m%work_forces, m%work_supports]))) then
+            msg = 'the energy audit of the meshes overflowed (elastic '//rtoa(m%elastic)//', plastic work '// &
+                  rtoa(m%plastic_work)//', work of supports '//rtoa(m%work_supports)//')'
+            return
+          end if
+        end if
+      end associate
       n = c%n
       if (n == 0) return
       if (.not. all(ieee_is_finite(c%r(:, 1:n)))) then
@@ -257,10 +279,21 @@ contains
       integer, intent(in) :: k
       character(len=:), allocatable :: s
       associate (c => sc%contacts)
-        s = 'contact '//itoa(k)//' ('//inter_names(c%inter(k))//' between bodies '// &
-            itoa(sc%bodies%number(c%cdb(k)))//' and '//itoa(sc%bodies%number(c%anb(k)))//')'
+        s = 'contact '//itoa(k)//' ('//inter_names(c%inter(k))//' between '//side(c%cdm(k), c%cdb(k))// &
+            ' and '//side(c%anm(k), c%anb(k))//')'
       end associate
     end function contact_name
+
+    !> A contact's body by its model: RBDY2 bodies by their BODIES.DAT number, MAILx by rank.
+    function side(model, ib) result(s)
+      integer, intent(in) :: model, ib
+      character(len=:), allocatable :: s
+      if (model == bm_mesh) then
+        s = 'MAILx body '//itoa(ib)
+      else
+        s = 'body '//itoa(sc%bodies%number(ib))
+      end if
+    end function side
   end function scene_fault
 
   !> Largest speed of a point of a rigid body of radius r: |v| + |omega| r.

@@ -11,9 +11,10 @@ used by every script of the repository.
     res.force_on(i, body), res.pair(a, b)    # helpers of the validation checks
 
 Nothing assumes rigid bodies beyond what the file says: body arrays take their shape from
-the file (3 dofs per rigid 2D body), and a /mesh group (meshed bodies) is read as a dict of arrays (Run.mesh, its attributes
-Run.mesh_attrs), and a snapshot's mesh data (a mesh group, the mesh_* datasets and the
-cracks group Fracas writes) as Snapshot.mesh.
+the file (3 dofs per rigid 2D body), and a /mesh group (meshed bodies) is read as a dict of
+arrays (Run.mesh, its attributes Run.mesh_attrs), and a snapshot's mesh_X, mesh_V,
+mesh_gauss_points (or mesh group) as Snapshot.mesh["X"], ["V"], ["gauss_points"], its
+cracks group (interfaces of exploded meshes) as Snapshot.mesh["cracks"].
 
 Positions: /bodies/reference holds the reference configuration (BODIES.DAT node
 coordinates) and snapshot X the displacement from it, as LMGC90's DOF files: position =
@@ -79,8 +80,10 @@ def _resolve_h5(path):
 class Snapshot:
     """One /snapshots/NNNNNN group: step, time, X, V (nb, ndof: 3 for rigid 2D bodies),
     contacts (dict of arrays, nc rows), pos (nb, ndof: for rigid bodies x, y and the
-    rotation from the reference orientation), mesh (dict of the arrays of the snapshot's
-    mesh group, empty without meshed bodies)."""
+    rotation from the reference orientation), mesh (dict of the meshes' state, empty
+    without meshed bodies: the snapshot's mesh_* datasets without their prefix, X and V
+    (nn, 2) node displacements and velocities, gauss_points (ngp, 13) as fracas writes
+    them, and the arrays of a mesh group if there is one)."""
 
     def __init__(self, name, step, time, X, V, contacts, pos, mesh=None):
         self.name, self.step, self.time = name, step, time
@@ -273,12 +276,19 @@ class Run:
         step = int(_attr(g.attrs.get("step", 0)))
         time = float(_attr(g.attrs.get("time", float("nan"))))
         mesh = _group_arrays(g["mesh"]) if "mesh" in g else {}
-        # Fracas writes a snapshot's mesh data at its top level: mesh_X, mesh_V,
-        # mesh_gauss_points, ... and the group cracks (doc/output_layout.md §5)
-        for k, obj in g.items():
-            if k.startswith("mesh_") or k == "cracks":
-                mesh[k] = _group_arrays(obj) if isinstance(obj, _h5py().Group) else obj[()]
+        for k in g:
+            if k.startswith("mesh_") and not hasattr(g[k], "keys"):
+                mesh[k[len("mesh_"):]] = g[k][()]
+        if "cracks" in g:
+            mesh["cracks"] = _group_arrays(g["cracks"])
         return Snapshot(name, step, time, X, V, contacts, pos, mesh)
+
+    def snapshot_arrays(self, name):
+        """One dataset of every snapshot (e.g. 'mesh_X', 'contacts/reaction'), as a
+        list of arrays in snapshot order: much faster than snapshot(i) for each i,
+        which reads every field. Stack them with np.array when their shapes agree."""
+        g = self.file["snapshots"]
+        return [np.asarray(g[n][name][()]) for n in self.snapshot_names]
 
     def snapshot_times(self):
         out = []

@@ -47,7 +47,8 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
 from fracas_tools.results import Run  # noqa: E402  (the one reader of fracas.h5)
 
-LMGC_CASES = ["disks_box", "drum", "driven_evolution", "polygons_ground", "mixed_disk_polygon", "glued_pair_czm"]
+LMGC_CASES = ["disks_box", "drum", "driven_evolution", "polygons_ground", "mixed_disk_polygon", "glued_pair_czm",
+              "mesh_block_drop", "mesh_disk_on_mesh", "mesh_exploded_beam", "mesh_plastic_bar", "mesh_t3_pair_czm"]
 
 # Numbers: Fortran reals as DATBOX writes them (E/D exponents, or a bare-sign 3-digit exponent).
 NUM_RE = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eEdD][-+]?\d+|[-+]\d{3})?")
@@ -74,6 +75,8 @@ COMMAND_VALUES = {
     "progress_every": ["1", "2147483647"],
 }
 LOCATED = re.compile(r"^\S+:\d+(:\d+)?: ", re.M)
+# A whole-file error (unreadable, a directory, no END line) names the file without a line.
+FILE_LEVEL = re.compile(r"^\S+\.(DAT|INI|OUT|dat|ini): ", re.M)
 EPS = 2.220446049250313e-16
 
 
@@ -274,7 +277,7 @@ def classify_check(rc, out, err):
         return "hang"
     if rc == 0 and "check: OK" in out:
         return "accepted"
-    if rc == 1 and LOCATED.search(err):
+    if rc == 1 and (LOCATED.search(err) or FILE_LEVEL.search(err)):
         return "rejected_located"
     if rc == 1 and "fracas: error:" in err:
         return "rejected_unlocated"
@@ -384,9 +387,12 @@ def main():
     ap.add_argument("--check-timeout", type=float, default=30.0)
     ap.add_argument("--run-timeout", type=float, default=120.0)
     ap.add_argument("--json", default=None, help="write every outcome here")
+    ap.add_argument("--match", default=None, help="mutate only source decks whose name contains this text")
     args = ap.parse_args()
 
     sources = source_decks(args.sources, args.lmgc90_decks)
+    if args.match:
+        sources = [s for s in sources if args.match in s[0]]
     if not sources:
         sys.exit("fuzz_decks.py: no source decks found")
     tmp = None

@@ -61,13 +61,13 @@ class PlateRun:
             self.series = run.series
             snap = run.snapshot(snapshot if snapshot < 0 else snapshot - 1)
             self.step, self.time = snap.step, snap.time
-            self.X = snap.mesh["mesh_X"]
+            self.X = snap.mesh["X"]
             c = snap.mesh["cracks"]
             self.edge_broken_step = c["edge_broken_step"]
             self.edge_beta = c["edge_beta"]
             self.damage_per_family = dict(zip(self.families, c["damage_per_family"]))
             self.fragment_of_body = c["fragment_of_body"]
-            self.gauss = snap.mesh["mesh_gauss_points"]
+            self.gauss = snap.mesh["gauss_points"]
         nb = len(self.body_first_node) - 1
         self.node_body = np.repeat(np.arange(nb), np.diff(self.body_first_node))
         centroids = self.ref[self.element_nodes].mean(axis=1)

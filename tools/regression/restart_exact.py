@@ -39,6 +39,13 @@ def snapshots_by_step(run):
     return {s: run.file["snapshots"][name] for name, (s, _) in zip(run.snapshot_names, run.snapshot_times())}
 
 
+def datasets(group):
+    """path -> dataset of every dataset under a snapshot group (bodies, contacts, meshes, cracks)."""
+    out = {}
+    group.visititems(lambda name, obj: out.__setitem__(name, obj) if hasattr(obj, "shape") else None)
+    return out
+
+
 def compare(whole, restarted, at):
     """List of (step, what, max |difference|) for every value that is not identical."""
     bad = []
@@ -48,18 +55,17 @@ def compare(whole, restarted, at):
         bad.append((at + 1, f"snapshot steps: restarted {sorted(sr)[:3]}..., whole {steps[:3]}...", np.inf))
         return bad, 0
     for s in steps:
-        for grp in ("bodies", "contacts"):
-            a, b = sw[s][grp], sr[s][grp]
-            if set(a) != set(b):
-                bad.append((s, f"{grp}: datasets differ ({sorted(set(a) ^ set(b))})", np.inf))
-                continue
-            for name in a:
-                x, y = a[name][()], b[name][()]
-                if x.shape != y.shape:
-                    bad.append((s, f"{grp}/{name} shape {y.shape} instead of {x.shape}", np.inf))
-                elif not np.array_equal(x, y):
-                    d = np.max(np.abs(x.astype(float) - y.astype(float))) if x.size else np.inf
-                    bad.append((s, f"{grp}/{name}", d))
+        a, b = datasets(sw[s]), datasets(sr[s])
+        if set(a) != set(b):
+            bad.append((s, f"datasets differ ({sorted(set(a) ^ set(b))})", np.inf))
+            continue
+        for name in sorted(a):
+            x, y = a[name][()], b[name][()]
+            if x.shape != y.shape:
+                bad.append((s, f"{name} shape {y.shape} instead of {x.shape}", np.inf))
+            elif not np.array_equal(x, y):
+                d = np.max(np.abs(x.astype(float) - y.astype(float))) if x.size else np.inf
+                bad.append((s, name, d))
     step_w = whole.series["step"]
     step_r = restarted.series["step"]
     rows = step_w > at

@@ -74,7 +74,8 @@ def test_meshed_layout_is_read(h5):
                 del g["bodies"][k]
                 g["bodies"][k] = a
             g.create_group("mesh")["stress"] = np.ones((1, 4))
-            g["mesh_X"] = np.zeros((3, 2))
+            g["mesh_X"] = np.full((3, 2), 0.5)              # as fracas writes the meshes' state
+            g["mesh_gauss_points"] = np.zeros((1, 13))
             g.create_group("cracks")["edge_beta"] = np.array([1.0, 0.0])
     res = Results(h5)
     assert res.body_model == "MAILx"
@@ -83,7 +84,10 @@ def test_meshed_layout_is_read(h5):
     assert res.mesh["elements"].tolist() == [[1, 2, 3]]
     snap = res.snapshot(-1)
     assert snap.X.shape == (nb, 2) and snap.mesh["stress"].shape == (1, 4)
-    assert snap.mesh["mesh_X"].shape == (3, 2) and snap.mesh["cracks"]["edge_beta"].tolist() == [1.0, 0.0]
+    assert snap.mesh["X"].tolist() == [[0.5, 0.5]] * 3 and snap.mesh["gauss_points"].shape == (1, 13)
+    xs = res.snapshot_arrays("mesh_X")
+    assert len(xs) == res.n_snapshots and all(np.array_equal(x, snap.mesh["X"]) for x in xs)
+    assert snap.mesh["cracks"]["edge_beta"].tolist() == [1.0, 0.0]
     assert res.mesh_attrs["interface_families"] == "MA_MA HY_MA"
 
 
