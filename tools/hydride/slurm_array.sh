@@ -12,7 +12,7 @@
 # HDF5, SuiteSparse, LAPACK as the build used; Python 3 with numpy, scipy, h5py,
 # matplotlib and gmsh), and the time limit. One case is one serial fracas run: on
 # this project's workstation a 2650-element plate (h = 1 um, 812 steps) took 44-78 s
-# of processor time and a 5200-element one (h = 0.7 um, 1160 steps) 133-202 s
+# of processor time and a 5200-element one (h = 0.7 um, 1160 steps) 132-202 s
 # (doc/hydrided_zircaloy.md §7); 1 hour per task leaves a wide margin. Memory stays
 # about 80 MB at 5200 elements.
 #
