@@ -2,7 +2,8 @@
 # Install the Debian packages Fracas needs, if any is missing (as root, or via sudo).
 set -euo pipefail
 packages=(gfortran gcc cmake make liblapack-dev libhdf5-dev libsuitesparse-dev libmetis-dev zlib1g-dev python3
-          python3-numpy python3-h5py python3-matplotlib python3-pytest python3-vtk9 python3-gmsh)
+          python3-numpy python3-h5py python3-matplotlib python3-pytest python3-vtk9 python3-gmsh
+          python3-scipy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

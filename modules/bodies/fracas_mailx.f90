@@ -81,8 +81,10 @@ module fracas_mailx
     real(wp), allocatable :: mdiag(:, :)       !< (2,nnodes) lumped mass (row sums if consistent)
     ! Forces of the step (2,nnodes): external (θ-average), internal at the start
     ! of the step and at the current iterate, Newton residual, contact impulses
-    ! of the last solve, force applied by the velocity drives (end of step).
+    ! of the last solve, force applied by the velocity drives (end of step),
+    ! inertia force M (V - V_begin) / h of the last step.
     real(wp), allocatable :: fext(:, :), fint_begin(:, :), fint(:, :), res(:, :), imp(:, :), fsupport(:, :)
+    real(wp), allocatable :: finert(:, :)
     real(wp), allocatable :: tmp(:, :)         !< (2,nnodes) scratch of the body-by-body products
     ! Linear algebra per body: small bodies dense (K, consistent M, A_ff⁻¹ with
     ! zero rows and columns on driven dofs, ndof² each from dfirst(b)), large
@@ -149,11 +151,11 @@ contains
               m%vfree(2, nn), m%driven(2, nn), m%movable(m%n), m%el_kind(ne), m%el_mat(ne), m%el_first(ne + 1), &
               m%el_nodes(nel_nodes), m%el_gp(ne + 1), m%gp(gp_size, ng), m%gp_begin(gp_size, ng), &
               m%nonlinear(m%n), m%lumped(m%n), m%mdiag(2, nn), m%fext(2, nn), m%fint_begin(2, nn), &
-              m%fint(2, nn), m%res(2, nn), m%imp(2, nn), m%fsupport(2, nn), m%tmp(2, nn))
+              m%fint(2, nn), m%res(2, nn), m%imp(2, nn), m%fsupport(2, nn), m%finert(2, nn), m%tmp(2, nn))
     m%x = 0.0_wp; m%v = 0.0_wp; m%vfree = 0.0_wp
     m%driven = .false.
     m%gp = 0.0_wp
-    m%fext = 0.0_wp; m%fint = 0.0_wp; m%res = 0.0_wp; m%imp = 0.0_wp; m%fsupport = 0.0_wp
+    m%fext = 0.0_wp; m%fint = 0.0_wp; m%res = 0.0_wp; m%imp = 0.0_wp; m%fsupport = 0.0_wp; m%finert = 0.0_wp
     ! Bulk laws of the materials meshes use (others may be RIGID).
     allocate (m%mats(size(deck%materials)), used(size(deck%materials)))
     used = .false.
@@ -802,6 +804,7 @@ contains
         i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
         call body_m_times(m, b, 2 * (i2 - i1 + 1), m%tmp(:, i1:i2), m%fsupport(:, i1:i2))
       end do
+      m%finert = m%fsupport / m%h
       ! the drives' force closes the equation of motion of their dofs
       where (m%driven)
         m%fsupport = -(m%h * m%fext - m%fsupport - m%h * ((1.0_wp - m%theta) * m%fint_begin + m%theta * m%fint) &

@@ -49,7 +49,7 @@ module fracas_restart_h5
     real(wp), allocatable :: pair_alert(:)
     ! Meshed bodies (unallocated without) and their cohesive interfaces.
     real(wp), allocatable :: mesh_x(:, :), mesh_v(:, :), mesh_gp(:, :), mesh_fint(:, :), mesh_energies(:)
-    real(wp), allocatable :: crack_beta(:)
+    real(wp), allocatable :: crack_beta(:), crack_family_damage(:)
     integer, allocatable :: crack_flags(:, :), crack_broken_step(:)
   end type restart_state_t
 
@@ -110,6 +110,7 @@ contains
       call h5_write_dataset(gh, 'beta', st%crack_beta)
       call h5_write_dataset(gh, 'flags', st%crack_flags)
       call h5_write_dataset(gh, 'broken_step', st%crack_broken_step)
+      call h5_write_dataset(gh, 'family_damage', st%crack_family_damage)
       call h5_close_group(gh)
     end if
     call h5_close_group(g)
@@ -183,6 +184,7 @@ contains
       call h5_read_dataset(gh, 'beta', st%crack_beta)
       call h5_read_dataset(gh, 'flags', st%crack_flags)
       call h5_read_dataset(gh, 'broken_step', st%crack_broken_step)
+      call h5_read_dataset(gh, 'family_damage', st%crack_family_damage)
       call h5_close_group(gh)
     end if
     call h5_close_group(g)

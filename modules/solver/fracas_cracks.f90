@@ -9,17 +9,20 @@
 !> (separated beyond the alert distance) counts as broken. An edge is broken
 !> when all its glued points are, damaged when one of them is. The family of
 !> an edge is the colour of its candidate contactor (the deck builder names
-!> interface families by colour, see doc/fracture.md).
+!> interface families by colour, see doc/fracture.md). The damage energy
+!> released on the glued points (as the solver books it in damage_dissipated)
+!> is summed per family.
 module fracas_cracks
   use fracas_kinds, only: wp
   use fracas_contactors, only: tactors_t, tk_clxxx
   use fracas_contacts, only: contacts_t
   use fracas_contact_laws, only: law_t, law_czm
+  use fracas_czm, only: czm_stored_energy
   use fracas_mailx, only: mailx_t
   use fracas_ids, only: bm_mesh
   implicit none
   private
-  public :: cracks_t, cracks_init, cracks_update, cracks_lengths, crack_paths_t, cracks_paths, cracks_fragments
+  public :: cracks_t, cracks_init, cracks_update, cracks_lengths, cracks_edge_beta, crack_paths_t, cracks_paths, cracks_fragments
 
   type :: cracks_t
     integer :: npts = 0, nedges = 0, nfamilies = 0
@@ -28,12 +31,14 @@ module fracas_cracks
     real(wp), allocatable :: pt_beta(:)         !< (npts) damage, 1 sound .. 0 broken
     logical, allocatable :: pt_glued(:), pt_seen(:)
     integer, allocatable :: pt_partner(:)       !< (npts) meshed body glued to the point (0: none)
+    integer, allocatable :: pt_an(:)            !< (npts) antagonist contactor of the glued contact
     integer, allocatable :: edge_first(:)       !< (nedges+1) points edge_pts(edge_first(e) ..) of edge e
     integer, allocatable :: edge_pts(:)
     integer, allocatable :: edge_nodes(:, :)    !< (2,nedges) mesh nodes of the candidate edge
     integer, allocatable :: edge_body(:), edge_family(:), edge_broken_step(:)
     real(wp), allocatable :: edge_length(:)     !< reference length
     character(len=5), allocatable :: family_names(:)
+    real(wp), allocatable :: family_damage(:)   !< (nfamilies) damage energy released so far, per family
   end type cracks_t
 
   !> Crack paths at one time: broken edges joined into connected cracks.
@@ -68,8 +73,9 @@ contains
     end do
     order = sort_keys(key)
     allocate (cr%pt_edge(cr%npts), cr%pt_beta(cr%npts), cr%pt_glued(cr%npts), cr%pt_seen(cr%npts), &
-              cr%pt_partner(cr%npts))
+              cr%pt_partner(cr%npts), cr%pt_an(cr%npts))
     cr%pt_partner = 0
+    cr%pt_an = 0
     cr%pt_beta = 1.0_wp
     cr%pt_glued = .false.
     cr%pt_seen = .false.
@@ -106,6 +112,8 @@ contains
       cr%edge_family(e) = family_index(t%color(k))
     end do
     cr%nfamilies = size(cr%family_names)
+    allocate (cr%family_damage(cr%nfamilies))
+    cr%family_damage = 0.0_wp
 
   contains
 
@@ -126,7 +134,12 @@ contains
   !> After a step: the interface points' damage from the cohesive contacts.
   !> Points glued at the start are those with a cohesive contact of beta > 0
   !> after the run's first step (first); a glued point without a contact has
-  !> separated beyond the alert distance: broken. step numbers the step.
+  !> separated beyond the alert distance: broken. Only the contact that glued
+  !> a point (same antagonist contactor) speaks for it: a point may later see
+  !> another antagonist within the alert distance (a new contact, without
+  !> cohesion), which says nothing about its interface. step numbers the step.
+  !> The energy a glued point released in the step, L (e(beta_old) - e(beta))
+  !> at the end-of-step jumps (the solver's damage_dissipated), goes to its family.
   subroutine cracks_update(cr, c, laws, first, step)
     type(cracks_t), intent(inout) :: cr
     type(contacts_t), intent(in) :: c
@@ -134,6 +147,7 @@ contains
     logical, intent(in) :: first
     integer, intent(in) :: step
     integer :: k, p, e
+    real(wp) :: ut, un
     logical, allocatable :: present_now(:)
     if (cr%npts == 0) return
     allocate (present_now(cr%npts))
@@ -142,13 +156,23 @@ contains
       if (laws(c%law(k))%kind /= law_czm) cycle
       p = cr%tactor_pt(c%cd(k))
       if (p == 0) cycle
-      present_now(p) = .true.
       if (.not. cr%pt_seen(p)) then
+        cr%pt_seen(p) = .true.
         cr%pt_glued(p) = first .and. c%internals(4, k) > 0.0_wp
-        if (cr%pt_glued(p) .and. c%anm(k) == bm_mesh) cr%pt_partner(p) = c%anb(k)
+        if (.not. cr%pt_glued(p)) cycle
+        cr%pt_an(p) = c%an(k)
+        if (c%anm(k) == bm_mesh) cr%pt_partner(p) = c%anb(k)
       end if
-      cr%pt_seen(p) = .true.
-      if (cr%pt_glued(p)) cr%pt_beta(p) = min(cr%pt_beta(p), c%internals(4, k))
+      if (.not. cr%pt_glued(p) .or. c%an(k) /= cr%pt_an(p)) cycle
+      present_now(p) = .true.
+      if (c%internals(4, k) < cr%pt_beta(p)) then
+        ut = c%internals(2, k); un = c%internals(3, k)
+        associate (z => laws(c%law(k))%czm, f => cr%edge_family(cr%pt_edge(p)))
+          cr%family_damage(f) = cr%family_damage(f) + c%length(k) * &
+            (czm_stored_energy(z, cr%pt_beta(p), ut, un) - czm_stored_energy(z, c%internals(4, k), ut, un))
+        end associate
+        cr%pt_beta(p) = c%internals(4, k)
+      end if
     end do
     where (cr%pt_glued .and. .not. present_now) cr%pt_beta = 0.0_wp
     do e = 1, cr%nedges
@@ -165,6 +189,19 @@ contains
       edge_broken = any(cr%pt_glued(pts)) .and. .not. any(cr%pt_glued(pts) .and. cr%pt_beta(pts) > 0.0_wp)
     end associate
   end function edge_broken
+
+  !> Damage of each edge: the lowest beta of its glued points (0 when none is glued).
+  function cracks_edge_beta(cr) result(beta)
+    type(cracks_t), intent(in) :: cr
+    real(wp) :: beta(cr%nedges)
+    integer :: e
+    do e = 1, cr%nedges
+      associate (p => cr%edge_pts(cr%edge_first(e):cr%edge_first(e + 1) - 1))
+        beta(e) = 0.0_wp
+        if (any(cr%pt_glued(p))) beta(e) = minval(cr%pt_beta(p), mask=cr%pt_glued(p), dim=1)
+      end associate
+    end do
+  end function cracks_edge_beta
 
   !> Broken and damaged interface lengths (reference configuration), in all
   !> and per family, and the counts of broken and damaged edges.

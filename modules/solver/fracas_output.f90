@@ -26,7 +26,7 @@ module fracas_output
   use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file, write_gpv_file
   use fracas_mailx, only: mailx_gauss_values
   use fracas_elements, only: el_ngauss_gpv, el_name, el_vtk_type, el_vtk_order
-  use fracas_cracks, only: crack_paths_t, cracks_paths, cracks_lengths, cracks_fragments
+  use fracas_cracks, only: crack_paths_t, cracks_paths, cracks_lengths, cracks_fragments, cracks_edge_beta
   use fracas_bulk, only: bulk_j2, gp_sxx, gp_szz, gp_ezz, gp_pxx, gp_pzz, gp_p, plane_stress
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close, results_flush, &
@@ -137,7 +137,7 @@ contains
     call write_contactors_group(o, sc)
     call results_flush(o%h5)
 
-    call postpro_open(o%pp, deck%postpro, out_dir, deck%run%nlgs_check)
+    call postpro_open(o%pp, deck%postpro, out_dir, deck%run%nlgs_check, sc%meshes)
     call system_clock(o%last_flush)
   end subroutine output_open
 
@@ -466,16 +466,13 @@ contains
     integer :: e, j, ne
     associate (cr => sc%cracks, m => sc%meshes)
       ne = cr%nedges
-      allocate (pts(2, 2 * ne), nodes(2, ne), beta(ne), broken(ne), damaged(ne), family(ne))
+      allocate (pts(2, 2 * ne), nodes(2, ne), broken(ne), damaged(ne), family(ne))
+      beta = cracks_edge_beta(cr)
       do e = 1, ne
         do j = 1, 2
           pts(:, 2 * e - 2 + j) = m%ref(:, cr%edge_nodes(j, e)) + m%x(:, cr%edge_nodes(j, e))
         end do
         nodes(:, e) = [int(2 * e - 2, ik), int(2 * e - 1, ik)]
-        associate (p => cr%edge_pts(cr%edge_first(e):cr%edge_first(e + 1) - 1))
-          beta(e) = minval(cr%pt_beta(p), mask=cr%pt_glued(p), dim=1)
-          if (.not. any(cr%pt_glued(p))) beta(e) = 0.0_wp
-        end associate
         broken(e) = merge(1_ik, 0_ik, cr%edge_broken_step(e) > 0)
         damaged(e) = merge(1_ik, 0_ik, beta(e) < 1.0_wp)
         family(e) = int(cr%edge_family(e), ik)
@@ -899,6 +896,9 @@ contains
     call h5_write_dataset(gc, 'main_origin', paths%origin)
     call h5_write_dataset(gc, 'main_tip', paths%tip)
     call h5_write_dataset(gc, 'broken_length_per_family', per_family)
+    call h5_write_dataset(gc, 'damage_per_family', sc%cracks%family_damage)
+    call h5_write_dataset(gc, 'edge_broken_step', int(sc%cracks%edge_broken_step, ik))
+    call h5_write_dataset(gc, 'edge_beta', cracks_edge_beta(sc%cracks))
     call h5_write_dataset(gc, 'fragment_of_body', int(piece, ik))
     call h5_write_attr(gc, 'fragments', nfrag)
     call h5_close_group(gc)
@@ -966,6 +966,11 @@ contains
       call h5_write_dataset(g, 'element_first_gauss_point', int(m%el_gp, ik))
       call h5_write_dataset(g, 'element_material', int(m%el_mat, ik))
       if (sc%cracks%nfamilies > 0) call h5_write_attr(g, 'interface_families', join(sc%cracks%family_names))
+      if (sc%cracks%nedges > 0) then
+        call h5_write_dataset(g, 'interface_edge_nodes', int(sc%cracks%edge_nodes, ik))
+        call h5_write_dataset(g, 'interface_edge_family', int(sc%cracks%edge_family, ik))
+        call h5_write_dataset(g, 'interface_edge_length', sc%cracks%edge_length)
+      end if
       call h5_close_group(g)
     end associate
   end subroutine mesh_static

@@ -13,24 +13,40 @@
 !>                        so far, -sum over contacts of r.(u_begin + u)/2 in the step
 !>                        (r impulses; as LMGC90, the sum runs over the written
 !>                        steps only: with STEP 1 it is the dissipation since the start)
+!>   NEW MECAx SETS       node sets of meshed bodies: the number of sets; per set
+!>                        the number of groups; per group 'body n' (MAILx number,
+!>                        node count) then n node numbers, one per line
+!>   Dep EVOLUTION        Dep_nnnnnnn.DAT per set: t, mean displacement (2), mean
+!>                        velocity (2) over the set's entries
+!>   Fint EVOLUTION       Fint_nnnnnnn.DAT per set: t, Reac(2) (contact impulse / H),
+!>                        Fint(2) (internal force at the end of the step, +K u),
+!>                        Finert(2) (M (V - V_begin) / H), Fext(2), Res(2) = Fint +
+!>                        Finert - Reac - Fext (the force driven dofs apply), summed
+!>                        over the set's entries (LMGC90's mod_postpro_2D layout)
 !>
-!> Every other command is reported once, with its line, and skipped. The
-!> meshed-body commands (NEW MECAx SETS, Dep EVOLUTION, Fint EVOLUTION) are
-!> recognised; a kind is added here with its reader of the parameter lines
-!> (postpro_input_t%params) and its writer in postpro_step.
+!> Every other command is reported once, with its line, and skipped. A kind is
+!> added here with its reader of the parameter lines (postpro_input_t%params)
+!> and its writer in postpro_step.
 module fracas_postpro
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, warn
+  use fracas_errors, only: fatal, warn, input_error
   use fracas_deck, only: postpro_input_t
   use fracas_files, only: make_dir
   use fracas_ids, only: st_noctc
-  use fracas_datbox_text, only: itoa
+  use fracas_datbox_text, only: itoa, parse_int
   use fracas_scene, only: scene_t, step_report_t, scene_body_impulses
+  use fracas_mailx, only: mailx_t
   implicit none
   private
   public :: postpro_t, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns
 
-  integer, parameter :: pp_solver = 1, pp_body = 2, pp_torque = 3, pp_dissipated = 4
+  integer, parameter :: pp_solver = 1, pp_body = 2, pp_torque = 3, pp_dissipated = 4, pp_dep = 5, pp_fint = 6
+
+  !> A node set of NEW MECAx SETS: its entries as mesh node indices (a node
+  !> listed twice counts twice, as in LMGC90).
+  type :: node_set_t
+    integer, allocatable :: nodes(:)
+  end type node_set_t
 
   type :: pp_command_t
     integer :: kind = 0
@@ -45,16 +61,19 @@ module fracas_postpro
     type(pp_command_t), allocatable :: cmds(:)
     real(wp) :: dissipated = 0.0_wp      !< DISSIPATED ENERGY's running sum
     character(len=5) :: check = 'Quad '
+    type(node_set_t), allocatable :: sets(:)
   end type postpro_t
 
 contains
 
   !> Open OUT_DIR/POSTPRO/ and its files for the commands of POSTPRO.DAT
-  !> (none: nothing is written). check: the NLGS norm (Quad, Maxm, QM/16).
-  subroutine postpro_open(pp, commands, out_dir, check)
+  !> (none: nothing is written). check: the NLGS norm (Quad, Maxm, QM/16);
+  !> meshes: the meshed bodies (for the node sets).
+  subroutine postpro_open(pp, commands, out_dir, check, meshes)
     type(postpro_t), intent(out) :: pp
     type(postpro_input_t), intent(in) :: commands(:)
     character(len=*), intent(in) :: out_dir, check
+    type(mailx_t), intent(in) :: meshes
     type(pp_command_t), allocatable :: cmds(:)
     integer :: k, n, j
     character(len=:), allocatable :: where
@@ -80,17 +99,30 @@ contains
         case ('DISSIPATED ENERGY')
           n = n + 1
           cmds(n)%kind = pp_dissipated
-        case ('NEW MECAx SETS', 'Dep EVOLUTION', 'Fint EVOLUTION')
-          call warn(where//"POSTPRO command '"//trim(c%name)//"' (meshed bodies) is not carried out yet: skipped")
+        case ('NEW MECAx SETS')
+          call read_node_sets(c, meshes, pp%sets)
           cycle
+        case ('Dep EVOLUTION', 'Fint EVOLUTION')
+          n = n + 1
+          cmds(n)%kind = merge(pp_dep, pp_fint, trim(c%name) == 'Dep EVOLUTION')
         case default
           call warn(where//"POSTPRO command '"//trim(c%name)//"' is not carried out by Fracas: skipped "// &
-                    '(supported: SOLVER INFORMATIONS, BODY TRACKING, TORQUE EVOLUTION, DISSIPATED ENERGY)')
+                    '(supported: SOLVER INFORMATIONS, BODY TRACKING, TORQUE EVOLUTION, DISSIPATED ENERGY, '// &
+                    'NEW MECAx SETS, Dep EVOLUTION, Fint EVOLUTION)')
           cycle
         end select
         cmds(n)%every = c%every
       end associate
     end do
+    if (.not. allocated(pp%sets)) allocate (pp%sets(0))
+    ! LMGC90 writes one Dep_/Fint_ file per node set: without sets there is nothing to write
+    if (size(pp%sets) == 0 .and. any(cmds(1:n)%kind == pp_dep .or. cmds(1:n)%kind == pp_fint)) then
+      call warn("POSTPRO.DAT: Dep EVOLUTION and Fint EVOLUTION without node sets ('NEW MECAx SETS'): "// &
+                'nothing to write, skipped')
+      j = count(cmds(1:n)%kind /= pp_dep .and. cmds(1:n)%kind /= pp_fint)
+      cmds(1:j) = pack(cmds(1:n), cmds(1:n)%kind /= pp_dep .and. cmds(1:n)%kind /= pp_fint)
+      n = j
+    end if
     pp%cmds = cmds(1:n)
     pp%active = n > 0
     if (.not. pp%active) return
@@ -107,6 +139,11 @@ contains
           allocate (c%units(size(c%bodies)))
           do j = 1, size(c%bodies)
             c%units(j) = open_file(trim(merge('BODY_  ', 'TORQUE_', c%kind == pp_body))//seven(c%bodies(j))//'.DAT')
+          end do
+        case (pp_dep, pp_fint)
+          allocate (c%units(size(pp%sets)))
+          do j = 1, size(pp%sets)
+            c%units(j) = open_file(trim(merge('Dep_ ', 'Fint_', c%kind == pp_dep))//seven(j)//'.DAT')
           end do
         end select
       end associate
@@ -128,7 +165,7 @@ contains
     type(scene_t), intent(in) :: sc
     type(step_report_t), intent(in) :: rep
     real(wp), allocatable :: imp(:, :)
-    real(wp) :: e1, e2, e3, energy
+    real(wp) :: e1, e2, e3, energy, f(2, 5)
     integer :: k, j, ib
     character(len=*), parameter :: f_body = '(es15.8,9(1x,es14.7))', f_torque = '(es15.8,6(1x,es14.7))'
     if (.not. pp%active) return
@@ -162,10 +199,81 @@ contains
           energy = step_dissipation(sc)
           pp%dissipated = pp%dissipated + energy
           write (c%units(1), '(es15.8,2(1x,es14.7))') sc%time, pp%dissipated, energy
+        case (pp_dep)
+          do j = 1, size(pp%sets)
+            associate (nodes => pp%sets(j)%nodes, m => sc%meshes)
+              write (c%units(j), '(es15.8,4(1x,es14.7))') sc%time, sum(m%x(:, nodes), dim=2) / size(nodes), &
+                sum(m%v(:, nodes), dim=2) / size(nodes)
+            end associate
+          end do
+        case (pp_fint)
+          do j = 1, size(pp%sets)
+            associate (nodes => pp%sets(j)%nodes, m => sc%meshes)
+              f(:, 1) = sum(m%imp(:, nodes), dim=2) / sc%h
+              f(:, 2) = sum(m%fint(:, nodes), dim=2)
+              f(:, 3) = sum(m%finert(:, nodes), dim=2)
+              f(:, 4) = sum(m%fext(:, nodes), dim=2)
+              f(:, 5) = f(:, 2) + f(:, 3) - f(:, 1) - f(:, 4)
+              write (c%units(j), '(es15.8,10(1x,es14.7))') sc%time, f
+            end associate
+          end do
         end select
       end associate
     end do
   end subroutine postpro_step
+
+  !> NEW MECAx SETS: the sets as mesh node indices, checked against the meshes.
+  subroutine read_node_sets(c, m, sets)
+    type(postpro_input_t), intent(in) :: c
+    type(mailx_t), intent(in) :: m
+    type(node_set_t), allocatable, intent(out) :: sets(:)
+    integer :: line, nsets, ngroups, is, ig, ib, nn, j, node, ios
+    integer, allocatable :: nodes(:)
+    line = 0
+    nsets = next_int('the number of sets', 1)
+    allocate (sets(nsets))
+    do is = 1, nsets
+      allocate (nodes(0))
+      ngroups = next_int('the number of groups of set '//itoa(is), 1)
+      do ig = 1, ngroups
+        call next_line('a MAILx body number and its node count')
+        read (c%params(line), *, iostat=ios) ib, nn
+        if (ios /= 0) call input_error(c%src%file, c%param_lines(line), 1, &
+          "NEW MECAx SETS: expected 'body nodes' (two integers), found '"//trim(c%params(line))//"'")
+        if (ib < 1 .or. ib > m%n) call input_error(c%src%file, c%param_lines(line), 1, 'NEW MECAx SETS: MAILx body '// &
+          itoa(ib)//' does not exist (1 to '//itoa(m%n)//')')
+        do j = 1, nn
+          node = next_int('a node number of MAILx body '//itoa(ib), 1)
+          if (node > m%node_first(ib + 1) - m%node_first(ib)) call input_error(c%src%file, c%param_lines(line), 1, &
+            'NEW MECAx SETS: MAILx body '//itoa(ib)//' has no node '//itoa(node))
+          nodes = [nodes, m%node_first(ib) + node - 1]
+        end do
+      end do
+      if (size(nodes) == 0) call input_error(c%src%file, c%src%line, 1, 'NEW MECAx SETS: set '//itoa(is)//' is empty')
+      call move_alloc(nodes, sets(is)%nodes)
+    end do
+    if (line < size(c%params)) call input_error(c%src%file, c%param_lines(line + 1), 1, &
+      'NEW MECAx SETS: '//itoa(nsets)//' sets announced, more lines follow')
+
+  contains
+
+    subroutine next_line(what)
+      character(len=*), intent(in) :: what
+      line = line + 1
+      if (line > size(c%params)) call input_error(c%src%file, c%src%line, 1, 'NEW MECAx SETS: expected '//what// &
+                                                  ' after line '//itoa(c%src%line + line - 1))
+    end subroutine next_line
+
+    integer function next_int(what, lowest) result(v)
+      character(len=*), intent(in) :: what
+      integer, intent(in) :: lowest
+      character(len=:), allocatable :: msg
+      call next_line(what)
+      if (.not. parse_int(c%params(line), v, msg) .or. v < lowest) call input_error(c%src%file, &
+        c%param_lines(line), 1, 'NEW MECAx SETS: expected '//what//' (an integer >= '//itoa(lowest)// &
+        "), found '"//trim(c%params(line))//"'")
+    end function next_int
+  end subroutine read_node_sets
 
   !> Energy dissipated by the contacts in the step just done: -r.(u_begin + u)/2
   !> summed over the contacts in contact (r impulses).
@@ -210,7 +318,8 @@ contains
   logical function postpro_owns(name)
     character(len=*), intent(in) :: name
     postpro_owns = name == 'SOLVER_INFORMATIONS.DAT' .or. name == 'DISSIPATED_ENERGY.DAT' .or. &
-                   numbered(name, 'BODY_') .or. numbered(name, 'TORQUE_')
+                   numbered(name, 'BODY_') .or. numbered(name, 'TORQUE_') .or. numbered(name, 'Dep_') .or. &
+                   numbered(name, 'Fint_')
   end function postpro_owns
 
   !> NAME is PREFIX, seven digits, '.DAT'.

@@ -75,11 +75,13 @@ contains
     associate (cr => sc%cracks)
       if (cr%npts > 0) then
         st%crack_beta = cr%pt_beta
-        allocate (st%crack_flags(3, cr%npts))
+        allocate (st%crack_flags(4, cr%npts))
         st%crack_flags(1, :) = merge(1, 0, cr%pt_glued)
         st%crack_flags(2, :) = merge(1, 0, cr%pt_seen)
         st%crack_flags(3, :) = cr%pt_partner
+        st%crack_flags(4, :) = cr%pt_an
         st%crack_broken_step = cr%edge_broken_step
+        st%crack_family_damage = cr%family_damage
       end if
     end associate
     call restart_h5_write(r%fid, st)
@@ -116,13 +118,16 @@ contains
     if (allocated(st%crack_beta) .neqv. sc%cracks%npts > 0) &
       call fatal('restart from '//trim(path)//': the deck and the restart point disagree on cohesive interfaces')
     if (allocated(st%crack_beta)) then
-      if (size(st%crack_beta) /= sc%cracks%npts .or. size(st%crack_broken_step) /= sc%cracks%nedges) &
+      if (size(st%crack_beta) /= sc%cracks%npts .or. size(st%crack_broken_step) /= sc%cracks%nedges .or. &
+          size(st%crack_flags, 1) /= 4 .or. size(st%crack_family_damage) /= sc%cracks%nfamilies) &
         call fatal('restart from '//trim(path)//': cohesive interfaces do not match the deck')
       sc%cracks%pt_beta = st%crack_beta
       sc%cracks%pt_glued = st%crack_flags(1, :) == 1
       sc%cracks%pt_seen = st%crack_flags(2, :) == 1
       sc%cracks%pt_partner = st%crack_flags(3, :)
+      sc%cracks%pt_an = st%crack_flags(4, :)
       sc%cracks%edge_broken_step = st%crack_broken_step
+      sc%cracks%family_damage = st%crack_family_damage
     end if
     sc%step = st%step
     sc%steps_done = st%steps_done

@@ -5,7 +5,8 @@ column by column.
     compare_postpro.py OURS_POSTPRO_DIR LMGC90_POSTPRO_DIR [--files F ...] [--rtol R] [--lines N]
 
 Every file of LMGC90's folder that Fracas writes (SOLVER_INFORMATIONS.DAT,
-BODY_*.DAT, TORQUE_*.DAT, DISSIPATED_ENERGY.DAT) must exist in ours with the
+BODY_*.DAT, TORQUE_*.DAT, DISSIPATED_ENERGY.DAT, and for meshed bodies Dep_*.DAT,
+Fint_*.DAT) must exist in ours with the
 same number of lines and columns, and the same line format (column widths).
 
 Tolerance, to the printed precision: LMGC90 prints 8 significant digits (ES14.7,
@@ -37,6 +38,8 @@ GROUPS = {
     "TORQUE": [[1, 2, 4, 5], [3, 6]],                    # forces | torques
     "SOLVER_INFORMATIONS": [],
     "DISSIPATED_ENERGY": [[1, 2]],
+    "Dep": [[1, 2], [3, 4]],                             # mean displacement | mean velocity
+    "Fint": [list(range(1, 11))],                        # Reac, Fint, Finert, Fext, Res: forces
 }
 COUNT_COLUMNS = {"SOLVER_INFORMATIONS": [1, 5]}
 NORM_COLUMNS = {"SOLVER_INFORMATIONS": [2, 3, 4]}
@@ -45,6 +48,8 @@ LINE_FORMAT = {  # widths of the fields of a line: ES15.8, then 1X + ES14.7 or 1
     "TORQUE": [15] + [15] * 6,
     "SOLVER_INFORMATIONS": [15, 9, 15, 15, 15, 9],
     "DISSIPATED_ENERGY": [15, 15, 15],
+    "Dep": [15] * 5,
+    "Fint": [15] * 11,
 }
 
 

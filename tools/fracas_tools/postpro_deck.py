@@ -2,9 +2,10 @@
 
 The file is a list of commands: a name line ('SOLVER INFORMATIONS', 'BODY
 TRACKING', 'NEW MECAx SETS', 'Dep EVOLUTION', ...), a 'STEP n' line (every n steps),
-then rows of integers (the command's arguments), and 'END'. Fracas does not run
-these commands; the file is kept so that a deck goes back to LMGC90 unchanged, and
-the node sets of 'NEW MECAx SETS' name the sets the Dep_/Fint_ files refer to.
+then rows of integers (the command's arguments), and 'END'. Fracas carries out
+SOLVER INFORMATIONS, BODY TRACKING, TORQUE EVOLUTION, DISSIPATED ENERGY and, for
+meshed bodies, NEW MECAx SETS with Dep EVOLUTION and Fint EVOLUTION (the Dep_/Fint_
+files of each set); the file is kept so that a deck goes back to LMGC90 unchanged.
 
     pp = PostPro()
     pp.add("NEW MECAx SETS", rows=mecax_set_rows([[(2, [3, 6, 9])], [(1, [3, 6, 9])]]))

@@ -12,8 +12,9 @@ used by every script of the repository.
 
 Nothing assumes rigid bodies beyond what the file says: body arrays take their shape from
 the file (3 dofs per rigid 2D body), and a /mesh group (meshed bodies) is read as a dict of
-arrays (Run.mesh), and a snapshot's mesh_X, mesh_V, mesh_gauss_points (or mesh group)
-as Snapshot.mesh["X"], ["V"], ["gauss_points"].
+arrays (Run.mesh, its attributes Run.mesh_attrs), and a snapshot's mesh_X, mesh_V,
+mesh_gauss_points (or mesh group) as Snapshot.mesh["X"], ["V"], ["gauss_points"], its
+cracks group (interfaces of exploded meshes) as Snapshot.mesh["cracks"].
 
 Positions: /bodies/reference holds the reference configuration (BODIES.DAT node
 coordinates) and snapshot X the displacement from it, as LMGC90's DOF files: position =
@@ -160,6 +161,14 @@ class Run:
         groups as nested dicts), empty without meshed bodies."""
         return _group_arrays(self.file["mesh"]) if "mesh" in self.file else {}
     @property
+    def mesh_attrs(self):
+        """The attributes of the /mesh group (plane, gauss_point_fields,
+        interface_families, ...), empty without meshed bodies."""
+        if "mesh" not in self.file:
+            return {}
+        return {k: _attr(v) for k, v in self.file["mesh"].attrs.items()}
+
+    @property
     def n_bodies(self):
         for k in ("number", "mass", "radius"):
             if k in self.bodies:
@@ -270,6 +279,8 @@ class Run:
         for k in g:
             if k.startswith("mesh_") and not hasattr(g[k], "keys"):
                 mesh[k[len("mesh_"):]] = g[k][()]
+        if "cracks" in g:
+            mesh["cracks"] = _group_arrays(g["cracks"])
         return Snapshot(name, step, time, X, V, contacts, pos, mesh)
 
     def snapshot_arrays(self, name):

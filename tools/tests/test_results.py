@@ -66,6 +66,7 @@ def test_meshed_layout_is_read(h5):
         m = f.create_group("mesh")
         m["nodes"] = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
         m["elements"] = np.array([[1, 2, 3]])
+        m.attrs["interface_families"] = "MA_MA HY_MA"
         for name in f["snapshots"]:
             g = f["snapshots"][name]
             for k in ("X", "V"):
@@ -75,6 +76,7 @@ def test_meshed_layout_is_read(h5):
             g.create_group("mesh")["stress"] = np.ones((1, 4))
             g["mesh_X"] = np.full((3, 2), 0.5)              # as fracas writes the meshes' state
             g["mesh_gauss_points"] = np.zeros((1, 13))
+            g.create_group("cracks")["edge_beta"] = np.array([1.0, 0.0])
     res = Results(h5)
     assert res.body_model == "MAILx"
     assert res.X.shape[2] == 2 and res.position.shape == res.X.shape
@@ -85,6 +87,8 @@ def test_meshed_layout_is_read(h5):
     assert snap.mesh["X"].tolist() == [[0.5, 0.5]] * 3 and snap.mesh["gauss_points"].shape == (1, 13)
     xs = res.snapshot_arrays("mesh_X")
     assert len(xs) == res.n_snapshots and all(np.array_equal(x, snap.mesh["X"]) for x in xs)
+    assert snap.mesh["cracks"]["edge_beta"].tolist() == [1.0, 0.0]
+    assert res.mesh_attrs["interface_families"] == "MA_MA HY_MA"
 
 
 def test_checker_counts():

@@ -107,7 +107,7 @@ def test_postpro_commands_checked(tmp_path):
     p = run("-q", "--output", out, "--set", "time_step=1e-3", "--set", "number_of_steps=10", deck)
     assert p.returncode == 0, p.stderr
     assert "POSTPRO.DAT:1: POSTPRO command 'COORDINATION NUMBER' is not carried out by Fracas: skipped" in p.stderr
-    assert "POSTPRO.DAT:3: POSTPRO command 'Dep EVOLUTION' (meshed bodies) is not carried out yet" in p.stderr
+    assert "Dep EVOLUTION and Fint EVOLUTION without node sets ('NEW MECAx SETS'): nothing to write, skipped" in p.stderr
     assert sorted(x.name for x in (out / "POSTPRO").iterdir()) == ["SOLVER_INFORMATIONS.DAT"]
     t = np.loadtxt(out / "POSTPRO" / "SOLVER_INFORMATIONS.DAT")[:, 0]
     np.testing.assert_allclose(t, [0.002, 0.004, 0.006, 0.008, 0.010])      # STEP 2

@@ -1,0 +1,24 @@
+# The hydrided Zircaloy-4 plate (issue 13, doc/hydrided_zircaloy.md): a small plate
+# (766 elements, seed 2) run with weak and with strong matrix/hydride bonding; the
+# check asserts the paper's claim (crack through hydrides with strong bonding, along
+# their boundaries with weak bonding) and the energy audit. Plus the generator's and the
+# gatherer's tests. Each run takes 6-8 s of processor time (medium).
+set(_hp ${CMAKE_CURRENT_SOURCE_DIR}/hydrided_plate)
+foreach(bonding weak strong)
+  add_test(NAME validation.hydrided_plate.${bonding}.run
+           COMMAND ${FRACAS_BIN} -q --overwrite --output ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/${bonding}
+                   ${_hp}/${bonding})
+  set_tests_properties(validation.hydrided_plate.${bonding}.run PROPERTIES
+                       FIXTURES_SETUP validation_hydrided_plate LABELS "medium;validation;hydride")
+endforeach()
+add_test(NAME validation.hydrided_plate.check
+         COMMAND ${FRACAS_PYTHON} ${_hp}/check.py ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/weak
+                 ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/strong)
+set_tests_properties(validation.hydrided_plate.check PROPERTIES
+                     FIXTURES_REQUIRED validation_hydrided_plate LABELS "quick;validation;hydride")
+add_test(NAME tools.hydride_plate
+         COMMAND ${FRACAS_PYTHON} -m pytest -q -p no:cacheprovider ${CMAKE_SOURCE_DIR}/tools/tests/test_hydride_plate.py)
+set_tests_properties(tools.hydride_plate PROPERTIES LABELS "medium;hydride")
+add_test(NAME tools.hydride_gather
+         COMMAND ${FRACAS_PYTHON} -m pytest -q -p no:cacheprovider ${CMAKE_SOURCE_DIR}/tools/tests/test_hydride_gather.py)
+set_tests_properties(tools.hydride_gather PROPERTIES LABELS "quick;hydride")

@@ -1,0 +1,59 @@
+#!/usr/bin/python3
+"""Checks the two runs of the small hydrided plate (README.md):
+
+1. the paper's claim (Dubois, after Perales et al.: strong matrix/hydride bonding
+   sends the crack through the hydrides, weak bonding along their boundaries): the
+   macro-crack's share through hydrides (HY_HY) is larger with strong bonding than
+   with weak bonding by at least MARGIN, and its share along matrix/hydride
+   interfaces (HY_MA) larger with weak bonding by at least MARGIN;
+2. the energy audit of each run: |balance_error| <= AUDIT_TOL x work of the drives
+   (kinetic + elastic + plastic + stored cohesive + dissipated = work of the drives);
+3. the damage energy per interface family adds up to the solver's damage_dissipated
+   (to 1e-9).
+
+    check.py WEAK_RUN_DIR STRONG_RUN_DIR
+"""
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parents[2] / "tools" / "hydride"))
+sys.path.insert(0, str(HERE.parents[2] / "tools"))
+import hydride_post as post  # noqa: E402
+from fracas_tools.checks import Checker  # noqa: E402
+
+# Measured (Fracas, this deck, after the merge of main's check pass): HY_HY share 0 % weak
+# / 15 % strong, HY_MA share 76 % weak / 31 % strong, balance error 8e-4 of the work. The
+# margin asks for a clear difference (the campaign of doc/hydrided_zircaloy.md gives the
+# spread over seeds); the audit tolerance covers the NLGS tolerance (1e-4) and the Newton
+# tolerance of the J2 matrix accumulated over 300 steps.
+MARGIN = 0.10
+AUDIT_TOL = 2e-3
+FAMILY_SUM_TOL = 1e-9
+
+
+def main(weak_dir, strong_dir):
+    ck = Checker("hydrided_plate (paper: strong bonding through hydrides, weak along interfaces)")
+    res = {}
+    for name, d in (("weak", weak_dir), ("strong", strong_dir)):
+        s = post.summary(d, deck_dir=HERE / name)      # outputs in d, hydrides.json with the deck
+        res[name] = s
+        e, c = s["energies"], s["crack"]
+        for f in post.FAMILY_LABEL:
+            ck.info(f"{name}: macro-crack share {f}", c["shares"][f])
+        ck.info(f"{name}: ligament left (um)", 1e6 * c["ligament"])
+        ck.at_most(f"{name}: |balance error| / work of the drives", e["relative_balance_error"], AUDIT_TOL,
+                   "kinetic + elastic + plastic + stored cohesive + dissipated = work")
+        ck.at_most(f"{name}: damage per family sum vs damage_dissipated", e["damage_family_sum_error"],
+                   FAMILY_SUM_TOL, "relative")
+    dh = res["strong"]["crack"]["shares"]["HY_HY"] - res["weak"]["crack"]["shares"]["HY_HY"]
+    di = res["weak"]["crack"]["shares"]["HY_MA"] - res["strong"]["crack"]["shares"]["HY_MA"]
+    ck.at_least("share through hydrides: strong - weak", dh, MARGIN, "the paper's Fig. 1")
+    ck.at_least("share along interfaces: weak - strong", di, MARGIN, "the paper's Fig. 2")
+    return ck.finish()
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    sys.exit(main(sys.argv[1], sys.argv[2]))
