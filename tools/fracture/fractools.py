@@ -212,6 +212,22 @@ def smooth_ramp(t_ramp, n=41, t_end=1.0e3):
     return np.vstack([np.append(t, t_end), np.append(f, 1.0)]).T
 
 
+def ramped_displacement(t, t_ramp, v):
+    """Displacement of a drive whose velocity follows smooth_ramp up to v: the integral
+    of v (1 - cos(pi t / t_ramp)) / 2, then v (t - t_ramp / 2)."""
+    return np.where(t < t_ramp, 0.5 * v * (t - t_ramp / np.pi * np.sin(np.pi * t / t_ramp)),
+                    v * (t - 0.5 * t_ramp))
+
+
+def load_from_work(t, work, delta, window):
+    """Load P = dW/dDelta of a displacement drive from its work W(t), by central
+    differences over `window` seconds either side (W is a time integral: the
+    structure's vibration averages out). Returns the rows used and P there."""
+    win = max(1, int(round(window / (t[1] - t[0]))))
+    i = np.arange(win, len(t) - win)
+    return i, (work[i + win] - work[i - win]) / (delta[i + win] - delta[i - win])
+
+
 def check_energy(ck, series, tol=0.01, what="energy audit"):
     """The energy audit of a run, against the energy in play (the largest of the
     external work and of kinetic + elastic + plastic + cohesive + dissipated):

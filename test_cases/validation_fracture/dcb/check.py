@@ -14,7 +14,8 @@ sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 import gen  # noqa: E402
-from fractools import Checker, MeshRun, check_energy, run_dir_from_argv  # noqa: E402
+from fractools import (Checker, MeshRun, check_energy, load_from_work, ramped_displacement,  # noqa: E402
+                       run_dir_from_argv)
 
 E, H, GC = gen.E, gen.H, gen.GC
 K = np.sqrt(E * GC * H ** 3 / 12.0)          # P a at G = G_c (unit width)
@@ -32,12 +33,6 @@ def p_lefm(delta):
     return E ** 0.25 * H ** 0.75 * (GC / 12.0) ** 0.75 * np.sqrt(8.0 / delta)
 
 
-def opening(t, p):
-    """The imposed opening Delta(t) of the two pins (half-cosine start)."""
-    tr, v = p["t_ramp"], p["v"]
-    return np.where(t < tr, 0.5 * v * (t - tr / np.pi * np.sin(np.pi * t / tr)), v * (t - 0.5 * tr))
-
-
 def main():
     variant = sys.argv[2] if len(sys.argv) > 2 else "quick"
     p = gen.params(variant)
@@ -45,14 +40,11 @@ def main():
     ck = Checker(f"fracture dcb ({variant})")
     s = mr.series
     t = s["time"]
-    delta = opening(t, p)
+    delta = ramped_displacement(t, p["t_ramp"], p["v"])     # the imposed opening of the two pins
+    # Load from the drives' work, P = dW/dDelta over 20 us either side.
     work = s["work_supports"]
-    # Load from the drives' work, P = dW/dDelta, over windows of WIN steps either
-    # side (the work is a time integral: the arms' vibration averages out).
-    win = max(1, int(round(20e-6 / (t[1] - t[0]))))
-    i = np.arange(win, len(t) - win)
+    i, load = load_from_work(t, work, delta, 20e-6)
     d_mid = delta[i]
-    load = (work[i + win] - work[i - win]) / (delta[i + win] - delta[i - win])
     # crack: broken bond length per snapshot, interpolated to the series times
     _, _, lengths = mr.tip_history()
     crack = np.interp(t, mr.times, lengths)

@@ -14,7 +14,8 @@ sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 import gen  # noqa: E402
-from fractools import Checker, MeshRun, check_energy, run_dir_from_argv  # noqa: E402
+from fractools import (Checker, MeshRun, check_energy, load_from_work, ramped_displacement,  # noqa: E402
+                       run_dir_from_argv)
 
 E, H, GC = gen.E, gen.H, gen.GC
 
@@ -35,11 +36,6 @@ def critical_load(a):
     return 4.0 / (3.0 * a) * np.sqrt(E * H ** 3 * GC)
 
 
-def deflection(t, p):
-    tr, v = p["t_ramp"], p["v"]
-    return np.where(t < tr, 0.5 * v * (t - tr / np.pi * np.sin(np.pi * t / tr)), v * (t - 0.5 * tr))
-
-
 def main():
     variant = sys.argv[2] if len(sys.argv) > 2 else "quick"
     p = gen.params(variant)
@@ -47,11 +43,9 @@ def main():
     ck = Checker(f"fracture enf ({variant})")
     s = mr.series
     t = s["time"]
-    delta = deflection(t, p)
+    delta = ramped_displacement(t, p["t_ramp"], p["v"])     # the imposed mid-span deflection
     work = s["work_supports"]
-    win = max(1, int(round(10e-6 / (t[1] - t[0]))))
-    i = np.arange(win, len(t) - win)
-    load = (work[i + win] - work[i - win]) / (delta[i + win] - delta[i - win])
+    i, load = load_from_work(t, work, delta, 10e-6)
     ipk = int(np.argmax(load))
     p_peak, d_peak = load[ipk], delta[i][ipk]
     lin = (delta > 0.2 * d_peak) & (delta < 0.6 * d_peak)
