@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Quick start 2: install what is missing, build (release) and run the whole ctest suite.
+# Quick start 2: install what is missing, build (release) and run the test suite
+# (ctest preset release: every test but the long validation runs, ctest --preset long).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install_deps.sh
