@@ -50,7 +50,13 @@ contains
     b%mass(1, :) = mass
     b%mass(2, :) = mass
     b%mass(3, :) = inertia
-    b%inv_mass = 1.0_wp / b%mass
+    ! A mass whose inverse overflows is refused by the start check (fracas_state_guard);
+    ! keep the inverse finite until then.
+    where (b%mass > 1.0_wp / huge(1.0_wp))
+      b%inv_mass = 1.0_wp / b%mass
+    elsewhere
+      b%inv_mass = huge(1.0_wp)
+    end where
     b%driven = .false.
     b%clamped = .false.
     allocate (b%drives(0))
