@@ -203,6 +203,13 @@ def safe_alert(mesh, apab=(0.25, 0.75)):
     return best
 
 
+def mp3_separation_opening(gc, smax, c):
+    """Opening at full separation of an MP3_CZM interface (energy gc, strength smax,
+    stiffness c): the elastic opening smax / c plus the softening branch's 1.5 gc / smax
+    (czm.md). Alert distances of the cohesive see rules are set from it."""
+    return 1.5 * gc / smax + smax / c
+
+
 def smooth_ramp(t_ramp, n=41, t_end=1.0e3):
     """(t, f) points of f = (1 - cos(pi t / t_ramp)) / 2 up to t_ramp, then 1: a drive
     that starts with zero acceleration and reaches its value without a kink (few

@@ -26,7 +26,7 @@ from pathlib import Path
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[2] / "tools" / "fracture"))
-from fractools import perturb_nodes, safe_alert, smooth_ramp  # noqa: E402
+from fractools import mp3_separation_opening, perturb_nodes, safe_alert, smooth_ramp  # noqa: E402
 
 E, NU, RHO = 32.0e9, 0.2, 2450.0
 GC, SMAX, CH_E = 3.0, 5.0e6, 50.0
@@ -49,7 +49,7 @@ def build():
         b.impose_evolution("impact", 2, "vlocy", "impact.txt", smooth_ramp(RISE) * [1.0, -V_IMPACT])
     c = CH_E * E / LC
     case.add_law("czmgl", "MP3_CZM", dyfr=0.0, stfr=0.0, cn=c, ct=c, smax=SMAX, w=GC)
-    d_c = 1.5 * GC / SMAX + SMAX / c
+    d_c = mp3_separation_opening(GC, SMAX, c)
     parts.add_see(case, "czmgl", alert=min(10.0 * d_c, 0.5 * safe_alert(mesh)))
     case.run.set(time_step=DT, final_time=T_END, plane="strain", nlgs_tolerance=1e-5,
                  nlgs_sweeps_per_check=5, output_hdf5_every=EVERY, output_dof_every=0,

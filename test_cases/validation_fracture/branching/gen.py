@@ -14,7 +14,7 @@ from pathlib import Path
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[2] / "tools" / "fracture"))
-from fractools import edge_traction, perturb_nodes, safe_alert, wave_speeds  # noqa: E402
+from fractools import edge_traction, mp3_separation_opening, perturb_nodes, safe_alert, wave_speeds  # noqa: E402
 
 E, NU, RHO = 32.0e9, 0.2, 2450.0
 GC = 3.0
@@ -43,7 +43,7 @@ def build(variant="quick"):
     edge_traction(parts.bodies, "bottom", (0.0, -TRACTION))
     c = CH_E * E / p["lc"]
     case.add_law("czmgl", "MP3_CZM", dyfr=0.0, stfr=0.0, cn=c, ct=c, smax=SMAX, w=GC)
-    d_c = 1.5 * GC / SMAX + SMAX / c
+    d_c = mp3_separation_opening(GC, SMAX, c)
     alert = 10.0 * d_c
     if alert > 0.5 * safe_alert(mesh):
         raise SystemExit(f"alert {alert:g} too wide for the mesh (safe {safe_alert(mesh):g})")

@@ -17,7 +17,7 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "tools" / "fracture"))
-from fractools import Grid, smooth_ramp  # noqa: E402
+from fractools import Grid, mp3_separation_opening, smooth_ramp  # noqa: E402
 
 E, NU, RHO = 135.3e9, 0.3, 1500.0      # the Alfano-Crisfield laminate's E11, isotropic here
 GC = 280.0                             # J/m2
@@ -65,7 +65,7 @@ def build(variant="quick"):
     lower.impose_evolution("pin_lo", 2, "vlocy", "open_lo.txt", ramp * [1.0, -0.5 * p["v"]])
     c = CH_E * E / p["el"]
     case.add_law("bondz", "MP3_CZM", dyfr=0.0, stfr=0.0, cn=c, ct=c, smax=p["smax"], w=GC)
-    d_c = 1.5 * GC / p["smax"] + p["smax"] / c           # full separation opening
+    d_c = mp3_separation_opening(GC, p["smax"], c)
     case.add_see("CLxxx", "BONDx", "ALpxx", "BONDx", "bondz", 3.0 * d_c)
     t_end = p["t_ramp"] / 2.0 + p["delta_end"] / p["v"]  # the ramp loses t_ramp/2 of opening
     case.run.set(time_step=p["dt"], final_time=t_end, plane="stress", nlgs_tolerance=1e-6,

@@ -15,7 +15,7 @@ from pathlib import Path
 
 sys.dont_write_bytecode = True
 sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "tools" / "fracture"))
-from fractools import Grid, smooth_ramp  # noqa: E402
+from fractools import Grid, mp3_separation_opening, smooth_ramp  # noqa: E402
 
 E, NU, RHO = 135.3e9, 0.3, 1500.0
 GC = 280.0                             # mode II fracture energy (MP3: one w for all modes)
@@ -63,7 +63,7 @@ def build(variant="quick"):
     c = CH_E * E / p["el"]
     case.add_law("bondz", "MP3_CZM", dyfr=0.0, stfr=0.0, cn=c, ct=c, smax=p["smax"], w=GC)
     case.add_law("lipsz", "GAP_SGR_CLB", fric=0.0)
-    d_c = 1.5 * GC / p["smax"] + p["smax"] / c
+    d_c = mp3_separation_opening(GC, p["smax"], c)
     case.add_see("CLxxx", "BONDx", "ALpxx", "BONDx", "bondz", 3.0 * d_c)
     case.add_see("CLxxx", "CRACK", "ALpxx", "CRACK", "lipsz", 3.0 * d_c)
     t_end = p["t_ramp"] / 2.0 + p["delta_end"] / p["v"]
