@@ -24,7 +24,7 @@ READERS = {"DOF": read_dof_file, "GPV": read_gpv, "Vloc_Rloc": read_vloc_rloc}
 
 
 @needs_decks
-@pytest.mark.parametrize("path", OUT_FILES, ids=lambda p: "/".join(Path(p).parts[-3::2]))
+@pytest.mark.parametrize("path", OUT_FILES, ids=["/".join(Path(p).parts[-3::2]) for p in OUT_FILES])
 def test_outbox_files_rewritten_identically(path):
     """DOF.OUT.n, GPV.OUT.n, Vloc_Rloc.OUT.n of every deck (rigid and meshed, all
     contact types): read -> text() gives the file back byte for byte."""
