@@ -21,7 +21,7 @@ from fracas_tools.fracture import MeshRun  # noqa: E402,F401
 
 __all__ = ["ROOT", "Checker", "MeshRun", "Grid", "structured_quads", "check_energy",
            "run_dir_from_argv", "smooth_ramp", "edge_traction", "perturb_nodes", "safe_alert",
-           "tip_speed", "crack_arms", "crack_angle", "wave_speeds"]
+           "tip_speed", "crack_arms", "crack_angle", "wave_speeds", "williams_chi"]
 
 
 class Grid:
@@ -217,6 +217,15 @@ def smooth_ramp(t_ramp, n=41, t_end=1.0e3):
     t = np.linspace(0.0, t_ramp, n)
     f = 0.5 * (1.0 - np.cos(np.pi * t / t_ramp))
     return np.vstack([np.append(t, t_end), np.append(f, 1.0)]).T
+
+
+def williams_chi(young, poisson):
+    """Williams's (1989) root-rotation factor chi of an isotropic beam arm (the crack
+    length of beam theory is corrected to a + chi h for mode I, a + 0.42 chi h for ENF
+    (Wang & Williams 1992)); the transverse shear modulus of the arm is E / (2 (1 + nu))."""
+    g = young / (2.0 * (1.0 + poisson))
+    gamma = 1.18 * young / g
+    return np.sqrt(young / (11.0 * g)) * (3.0 - 2.0 * (gamma / (1.0 + gamma)) ** 2)
 
 
 def ramped_displacement(t, t_ramp, v):

@@ -15,17 +15,10 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 import gen  # noqa: E402
 from fractools import (Checker, MeshRun, check_energy, load_from_work, ramped_displacement,  # noqa: E402
-                       run_dir_from_argv)
+                       run_dir_from_argv, williams_chi)
 
 E, H, GC = gen.E, gen.H, gen.GC
 K = np.sqrt(E * GC * H ** 3 / 12.0)          # P a at G = G_c (unit width)
-
-
-def williams_chi(nu):
-    """Root-rotation correction a + chi h of an isotropic arm (Williams 1989)."""
-    g = E / (2.0 * (1.0 + nu))
-    gamma = 1.18 * E / g
-    return np.sqrt(E / (11.0 * g)) * (3.0 - 2.0 * (gamma / (1.0 + gamma)) ** 2)
 
 
 def p_lefm(delta):
@@ -55,7 +48,7 @@ def main():
     lin = (delta > 0.15 * d_peak) & (delta < 0.5 * d_peak)
     c0 = 1.0 / (2.0 * np.polyfit(delta[lin] ** 2, work[lin], 1)[0])
     a_eff = (c0 * E * H ** 3 / 8.0) ** (1.0 / 3.0)
-    chi = williams_chi(gen.NU)
+    chi = williams_chi(E, gen.NU)
     c_beam = 8.0 * (p["a0"] + chi * H) ** 3 / (E * H ** 3)
     ck.rel("initial compliance (m/(N/m))", c0, c_beam, 0.05,
            note=f"corrected beam theory a0 + {chi:.3f} h; plain a0: {8 * p['a0'] ** 3 / (E * H ** 3):.4g}; "

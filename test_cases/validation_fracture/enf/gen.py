@@ -8,7 +8,7 @@ start). The arms are glued by MP3_CZM on x in [A0, 2L]; on the pre-crack x < A0 
 touch through frictionless contact (GAP_SGR_CLB, mu = 0), as beam theory assumes.
 Plane stress, isotropic E, nu.
 
-    gen.py OUT_DIR [quick|full]
+    gen.py OUT_DIR [h1|h2|h4|unstable]
 """
 import sys
 from pathlib import Path
@@ -20,20 +20,25 @@ from fractools import Grid, mp3_separation_opening, smooth_ramp  # noqa: E402
 E, NU, RHO = 135.3e9, 0.3, 1500.0
 GC = 280.0                             # mode II fracture energy (MP3: one w for all modes)
 H = 1.5e-3                             # arm thickness (beam 2 H)
+CH_E = 50.0                            # the exploded meshes' C h / E (doc/fracture.md section 2)
 VARIANTS = {
-    "quick": dict(half_span=20e-3, a0=10e-3, el=0.5e-3, ny=2, smax=100e6, v=0.5, t_ramp=0.2e-3,
-                  dt=5e-7, delta_end=0.35e-3, every=10),
-    "full": dict(half_span=30e-3, a0=15e-3, el=0.375e-3, ny=3, smax=100e6, v=0.5, t_ramp=0.3e-3,
-                 dt=5e-7, delta_end=0.6e-3, every=10),
+    # Stable growth (a0^3 > L^3 / 3): the validation, one geometry at three time steps
+    # h1, h2, h4 = 1e-6, 5e-7, 2.5e-7 s (README.md). grown: crack growth after which the
+    # energy window opens; a_max: it closes where the LEFM crack length reaches a_max L.
+    **{name: dict(half_span=30e-3, a0=22.5e-3, el=0.75e-3, ny=2, smax=100e6, c=1e15, v=0.5, t_ramp=0.3e-3,
+                  dt=dt, delta_end=0.60e-3, every=every, window=10e-6, grown=1.5e-3, a_max=1.0)
+       for name, dt, every in (("h1", 1e-6, 10), ("h2", 5e-7, 20), ("h4", 2.5e-7, 40))},
+    # The first geometry (a0 = L / 2): the crack jumps; the time-step study of README.md.
+    "unstable": dict(half_span=20e-3, a0=10e-3, el=0.5e-3, ny=2, smax=100e6, c=CH_E * E / 0.5e-3, v=0.5,
+                     t_ramp=0.2e-3, dt=5e-7, delta_end=0.35e-3, every=10, window=10e-6),
 }
-CH_E = 50.0
 
 
 def params(variant):
     return VARIANTS[variant]
 
 
-def build(variant="quick"):
+def build(variant="h2"):
     import numpy as np
     from fracas_tools import Case
     from fracas_tools.mesh import mesh_from_arrays
@@ -60,7 +65,7 @@ def build(variant="quick"):
     upper.impose_evolution("load", 2, "vlocy", "load.txt", smooth_ramp(p["t_ramp"]) * [1.0, -p["v"]])
     lower.fix("pin")
     lower.impose_velocity("roller", (2,))
-    c = CH_E * E / p["el"]
+    c = p["c"]
     case.add_law("bondz", "MP3_CZM", dyfr=0.0, stfr=0.0, cn=c, ct=c, smax=p["smax"], w=GC)
     case.add_law("lipsz", "GAP_SGR_CLB", fric=0.0)
     d_c = mp3_separation_opening(GC, p["smax"], c)
@@ -75,6 +80,6 @@ def build(variant="quick"):
 
 if __name__ == "__main__":
     out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent
-    variant = sys.argv[2] if len(sys.argv) > 2 else "quick"
+    variant = sys.argv[2] if len(sys.argv) > 2 else "h2"
     build(variant).write(out)
     print(f"wrote {out / 'DATBOX'} ({variant})")
