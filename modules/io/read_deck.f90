@@ -161,7 +161,39 @@ contains
                          //' does not match DOF.INI ($steps '//itoa(deck%dof_step)//' time= ' &
                          //rtoa(deck%dof_time)//')')
     end if
+    call check_plastic_restart(deck)
   end subroutine read_deck
+
+  !> Warn when DOF.INI displaces an elastoplastic meshed body that GPV.INI gives
+  !> no Gauss-point values for: its plastic strain would restart at zero, with
+  !> stresses recomputed elastically from the displacement (not the state the
+  !> displacement came from).
+  subroutine check_plastic_restart(deck)
+    type(deck_t), intent(in) :: deck
+    integer :: k, ib, ie, im
+    logical :: plastic
+    do k = 1, size(deck%dof_ini)
+      associate (r => deck%dof_ini(k))
+        if (r%model /= 'MAILx' .or. .not. allocated(r%node_x)) cycle
+        if (all(r%node_x == 0.0_wp)) cycle
+        if (any(deck%gpv_ini%body == r%body)) cycle
+        plastic = .false.
+        do ib = 1, size(deck%bodies)
+          if (deck%bodies(ib)%model /= 'MAILx' .or. deck%bodies(ib)%number /= r%body) cycle
+          do ie = 1, size(deck%bodies(ib)%elements)
+            do im = 1, size(deck%models)
+              if (deck%models(im)%nickname == deck%bodies(ib)%elements(ie)%model .and. &
+                  deck%models(im)%material == 'J2iso') plastic = .true.
+            end do
+          end do
+        end do
+        if (plastic) call warn(trim(r%src%file)//':'//itoa(r%src%line)//': DOF.INI displaces MAILx body '// &
+          itoa(r%body)//', which is elastoplastic (J2iso), but GPV.INI gives no Gauss-point values for it: '// &
+          'its plastic strain restarts at zero and its stresses are recomputed elastically from the '// &
+          'displacement. For an exact restart, give as GPV.INI the GPV.OUT.n written with that DOF.OUT.n')
+      end associate
+    end do
+  end subroutine check_plastic_restart
 
   !> True when the run control names a time step and a length of run.
   logical function run_is_set(run)
