@@ -671,6 +671,8 @@ contains
     type(mailx_t), intent(inout) :: m
     real(wp), intent(in) :: t
     integer :: k, b, i1, i2
+    real(wp) :: e_before
+    logical :: jump
     m%time = t
     m%iterations = 0
     m%tmp(1, :) = m%gravity(1)
@@ -679,11 +681,26 @@ contains
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
       call body_m_times(m, b, 2 * (i2 - i1 + 1), m%tmp(:, i1:i2), m%fext(:, i1:i2))
     end do
+    jump = .false.
     do k = 1, size(m%drives)
       associate (d => m%drives(k))
-        if (d%is_velocity .and. m%driven_start_imposed) m%vbegin(d%dof, d%body) = drive_value(d, t)
+        if (d%is_velocity) jump = jump .or. m%vbegin(d%dof, d%body) /= drive_value(d, t)
       end associate
     end do
+    if (m%driven_start_imposed .and. jump) then
+      ! The supports set a driven dof to its imposed value at the start of the step
+      ! (LMGC90's rule; usually it is there already): the kinetic energy that adds
+      ! is work of the supports.
+      m%v = m%vbegin
+      e_before = mailx_kinetic_energy(m)
+      do k = 1, size(m%drives)
+        associate (d => m%drives(k))
+          if (d%is_velocity) m%vbegin(d%dof, d%body) = drive_value(d, t)
+        end associate
+      end do
+      m%v = m%vbegin
+      m%work_supports = m%work_supports + mailx_kinetic_energy(m) - e_before
+    end if
     m%v = m%vbegin
     do k = 1, size(m%drives)
       associate (d => m%drives(k))

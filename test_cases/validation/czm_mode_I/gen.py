@@ -9,6 +9,14 @@ to 0.95 d_peak (elastic), d_peak/1000 per step up to 1.25 d_peak (the peak), the
 opening growing by 1/400 of itself per step (geometric) until the end (20 d0 for MAC, 1.1 times full separation for the others): the one-step lag of
 beta then changes the stress by at most 0.25 % near the peak (README.md). The parameters below are read by check.py
 (import gen). Run once; the generated DATBOX folders are committed.
+
+    gen.py [LAW ...]              the rigid decks (committed)
+    gen.py --mesh OUT_DIR LAW     the same scene with meshed blocks: two 1 m x 1 m Q4
+                                  MAILx bodies (E = 1e14 Pa, nu = 0: rigid next to the
+                                  interface, no lateral contraction), glued by the gap law
+                                  (MAC_CZM, MP3_CZM, ...) through CLALp contacts: two
+                                  CLxxx points of L = 0.5 m on the upper block's bottom
+                                  edge against the lower block's top edge (ALpxx)
 """
 import sys
 from pathlib import Path
@@ -72,7 +80,43 @@ def build(name):
     return case
 
 
+MESH_E = 1.0e14        # Young's modulus of the meshed blocks (Pa): E/h = 1000 cn
+
+
+def build_mesh(name):
+    """The scene with two Q4 MAILx blocks and the gap variant of the law (README.md)."""
+    import numpy as np
+    from fracas_tools import Case
+    from fracas_tools.mesh import mesh_from_arrays
+    law_name, law = LAWS[name]
+    n1, n2, table = schedule(name)
+    nodes = np.array([(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5),
+                      (-0.5, 0.5), (0.5, 0.5), (0.5, 1.5), (-0.5, 1.5)])
+    mesh = mesh_from_arrays(nodes, [(0, 1, 2, 3), (4, 5, 6, 7)], ["lower", "upper"],
+                            node_groups={"bottom": [0, 1], "corner": [0], "upper": [4, 5, 6, 7]},
+                            edge_groups={"face_lo": [(3, 2)], "face_up": [(4, 5)]})
+    case = Case(gravity=(0.0, 0.0))
+    case.add_material("STIFF", RHO, "ELAS", young=MESH_E, poisson=0.0)
+    lower, upper = case.add_mesh(mesh, "STIFF")
+    law.add_to(case, "czm01", law_name.replace("IQS_", ""), MU)
+    upper.add_candidates_on("face_up", "BLEUx")
+    lower.add_polyline_on("face_lo", "BLEUx")
+    case.add_see("CLxxx", "BLEUx", "ALpxx", "BLEUx", "czm01", ALERT)
+    lower.impose_velocity("bottom", (2,))
+    lower.impose_velocity("corner", (1,))
+    upper.impose_evolution("upper", 2, "vlocy", "vy.dat", data=table)
+    upper.impose_velocity("upper", (1,))
+    case.run.set(time_step=DT, number_of_steps=n1 + n2, theta=0.5, nlgs_check="Quad",
+                 nlgs_tolerance=1e-6, output_hdf5_every=1, output_dof_every=0,
+                 output_vtk_every=0, progress_every=0)
+    return case
+
+
 if __name__ == "__main__":
+    if sys.argv[1:2] == ["--mesh"]:
+        build_mesh(sys.argv[3]).write(Path(sys.argv[2]))
+        print(f"wrote {sys.argv[2]}/DATBOX (meshed, {sys.argv[3]})")
+        sys.exit(0)
     for name in (sys.argv[1:] or LAWS):
         build(name).write(HERE / name)
         print(f"wrote {HERE / name / 'DATBOX'}  steps {sum(schedule(name)[:2])}")
