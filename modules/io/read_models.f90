@@ -11,7 +11,7 @@
 !> writes for rigid bodies is read and kept; no element may use it.
 module fracas_read_models
   use fracas_deck, only: model_input_t, body_input_t, material_input_t
-  use fracas_errors, only: input_error
+  use fracas_errors, only: input_error, warn
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, is_blank, &
                                 keyword_of, is_data, get_word, itoa
   implicit none
@@ -122,6 +122,11 @@ contains
     if (m%kinematic == 'large' .and. seen(2) == 0) &
       call input_error(m%src%file, m%src%line, 2, "model '"//trim(m%nickname)//"' has 'kine_ large' but no " &
                        //"'form_' option (UpdtL or TotaL)")
+    ! Read so that LMGC90's decks run, but not what is computed: say so.
+    if (m%kinematic == 'large') call warn(m%src%file//':'//itoa(seen(1))//": model '"//trim(m%nickname)// &
+      "' asks for large kinematics (kine_ large, form_ "//trim(m%formulation)//"): Fracas runs it with small " &
+      //'strain (linear strain about the reference configuration), which agrees with LMGC90 only while '// &
+      'rotations and strains stay small (doc/mesh_mechanics.md)')
   end subroutine read_model
 
   !> One 'option value' pair (columns 23-27 and 30-34) into M.
