@@ -34,21 +34,28 @@ fracas_czm_case(rate ${_czm}/czm_rate ${_czm}/czm_rate/check.py quick)
 fracas_czm_case(energy ${_czm}/czm_energy ${_czm}/czm_energy/check.py medium)
 # Both blocks fully driven: the contacts exist and follow the law's closed form (issue 9).
 fracas_czm_case(driven_pair ${_czm}/czm_driven_pair ${_czm}/czm_driven_pair/check.py quick)
-# Mode I on meshed blocks: the gap law of each family (MAC_CZM, MP3_CZM, MAL_CZM, TH_CZM,
-# EXPO_CZM) on CLALp contacts between two Q4 MAILx bodies, the deck generated into the
-# build tree (gen.py --mesh), the same checks as the rigid blocks'.
-foreach(law mac mp3 mal th expo)
-  set(out ${CMAKE_CURRENT_BINARY_DIR}/czm_mode_I_mesh_${law})
-  add_test(NAME validation.czm_mode_I_mesh_${law}.gen
-           COMMAND ${FRACAS_PYTHON} ${_czm}/czm_mode_I/gen.py --mesh ${out} ${law})
-  add_test(NAME validation.czm_mode_I_mesh_${law}.run COMMAND ${FRACAS_BIN} -q --overwrite ${out})
-  add_test(NAME validation.czm_mode_I_mesh_${law}.check
-           COMMAND ${FRACAS_PYTHON} ${_czm}/czm_mode_I/check.py ${out} ${law} --mesh)
-  set_tests_properties(validation.czm_mode_I_mesh_${law}.gen PROPERTIES
-                       FIXTURES_SETUP czm_mesh_${law}_deck LABELS "quick;validation;czm")
-  set_tests_properties(validation.czm_mode_I_mesh_${law}.run PROPERTIES
-                       FIXTURES_REQUIRED czm_mesh_${law}_deck FIXTURES_SETUP czm_mesh_${law}
-                       LABELS "quick;validation;czm")
-  set_tests_properties(validation.czm_mode_I_mesh_${law}.check PROPERTIES
-                       FIXTURES_REQUIRED "czm_mesh_${law}_deck;czm_mesh_${law}" LABELS "quick;validation;czm")
+# Meshed blocks: the gap law of each family (MAC_CZM, MP3_CZM, MAL_CZM, TH_CZM, EXPO_CZM)
+# on CLALp contacts between two Q4 MAILx bodies, opened (mode I) or slid (mode II), the
+# deck generated into the build tree (gen.py --mesh [--shear]), czm_mode_I's checks.
+foreach(mode I II)
+  if(mode STREQUAL "II")
+    set(flag --shear)
+  else()
+    set(flag "")
+  endif()
+  foreach(law mac mp3 mal th expo)
+    set(name czm_mode_${mode}_mesh_${law})
+    set(out ${CMAKE_CURRENT_BINARY_DIR}/${name})
+    add_test(NAME validation.${name}.gen
+             COMMAND ${FRACAS_PYTHON} ${_czm}/czm_mode_I/gen.py --mesh ${out} ${law} ${flag})
+    add_test(NAME validation.${name}.run COMMAND ${FRACAS_BIN} -q --overwrite ${out})
+    add_test(NAME validation.${name}.check
+             COMMAND ${FRACAS_PYTHON} ${_czm}/czm_mode_I/check.py ${out} ${law} --mesh ${flag})
+    set_tests_properties(validation.${name}.gen PROPERTIES
+                         FIXTURES_SETUP ${name}_deck LABELS "quick;validation;czm")
+    set_tests_properties(validation.${name}.run PROPERTIES
+                         FIXTURES_REQUIRED ${name}_deck FIXTURES_SETUP ${name} LABELS "quick;validation;czm")
+    set_tests_properties(validation.${name}.check PROPERTIES
+                         FIXTURES_REQUIRED "${name}_deck;${name}" LABELS "quick;validation;czm")
+  endforeach()
 endforeach()

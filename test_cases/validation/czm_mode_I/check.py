@@ -2,8 +2,9 @@
 """Check a czm_mode_I run against the closed-form traction-opening curve of its law
 (README.md).
 
-usage: check.py RUN_DIR LAW [--mesh]   (RUN_DIR holds OUTBOX/fracas.h5; LAW in mac mp3 mal th expo;
-       --mesh: the meshed blocks of gen.py --mesh)
+usage: check.py RUN_DIR LAW [--mesh [--shear]]   (RUN_DIR holds OUTBOX/fracas.h5; LAW in mac mp3 mal
+       th expo; --mesh: the meshed blocks of gen.py --mesh; --shear: their pure-sliding variant,
+       the same checks on the tangential jump ut, the shear traction and the mode II curve)
 Prints one line per quantity and exits 1 if any check fails.
 """
 import sys
@@ -29,11 +30,13 @@ ENERGY_TOL = 1e-2           # dissipated energy (brief: 1 %)
 CURVE_TOL = 1e-2            # max |sigma - sigma_closed(u)| / sigma_max
 
 
-def analyse(run, law):
-    """Interface traction, opening and beta per step (snapshots at every step)."""
+def analyse(run, mode):
+    """Interface traction, jump and beta per step (snapshots at every step). Mode 1:
+    the tensile traction (rn < 0 in tension) and the normal jump un the law sees
+    (internals); mode 2: the shear traction (rt < 0 opposes the slip) and ut."""
     p = run.pair(UPPER, LOWER)
-    sig = -p.total("rn") / gen.GLUED             # tensile traction (rn < 0 in tension)
-    un = p.mean("un")                            # normal jump seen by the law (internals)
+    sig = -p.total("rn" if mode == 1 else "rt") / gen.GLUED
+    un = p.mean("un" if mode == 1 else "ut")
     beta = p.mean("beta")
     return p, sig, un, beta
 
@@ -43,26 +46,35 @@ def main():
         raise SystemExit(f"usage: check.py RUN_DIR LAW ({' '.join(gen.LAWS)})")
     name = sys.argv[2]
     mesh = "--mesh" in sys.argv[3:]
+    mode = 2 if "--shear" in sys.argv[3:] else 1
     # References from the closed forms of czm.md 1.2 (not the solver's update mirrored)
     law = cf.Closed.of(gen.LAWS[name][1])
     run = CzmRun(sys.argv[1], bodies=False)
     law_name = gen.LAWS[name][0].replace("IQS_", "") if mesh else gen.LAWS[name][0]
-    ck = valtools.Checker(f"czm_mode_I/{name} ({law_name}{', meshed blocks' if mesh else ''})")
-    p, sig, un, beta = analyse(run, law)
-    smax, dpk, k, c = law.peak(1), law.d_peak(1), law.k, law.cn
-    G = law.fracture_energy(1)
-    n1, n2, _ = gen.schedule(name)
+    what = ", meshed blocks" if mesh else ""
+    what += ", sliding (mode II)" if mode == 2 else ""
+    ck = valtools.Checker(f"czm_mode_I/{name} ({law_name}{what})")
+    p, sig, un, beta = analyse(run, mode)
+    smax, dpk, k, c = law.peak(mode), law.d_peak(mode), law.k, (law.cn if mode == 1 else law.ct)
+    G = law.fracture_energy(mode)
+    n1, n2, _ = gen.schedule(name, mode)
     ns = len(sig)
 
     ck.true("run complete, a snapshot per step", run.complete == 1 and ns == n1 + n2
             and np.all(run.step == np.arange(1, ns + 1)), ours=f"{ns} snapshots")
     ck.true("NLGS converged at every step", bool(np.all(run.series["converged"] == 1)))
+    # (sliding meshed blocks: L is half the current edge length, exact to round-off)
     ck.true("two glued points of L = 0.5 m in every step",
-            bool(np.all(p.present) and p.L.shape[1] == 2 and np.all(p.L == 0.5 * gen.GLUED)))
-    ck.at_most("points agree: max |un1 - un2| (m)", np.abs(p.un[:, 0] - p.un[:, 1]).max(), 1e-15 + 1e-9 * dpk)
+            bool(np.all(p.present) and p.L.shape[1] == 2 and np.all(np.abs(p.L - 0.5 * gen.GLUED) <= 1e-15)))
+    jumps = p.un if mode == 1 else p.ut
+    # Sliding meshed blocks: the slip reaches the points through the lower block's
+    # compliance, solved by the NLGS to its tolerance (1e-6): the points agree to it.
+    agree = 1e-6 * dpk if mesh and mode == 2 else 1e-9 * dpk
+    ck.at_most(f"points agree: max |{'un' if mode == 1 else 'ut'}1 - {'un' if mode == 1 else 'ut'}2| (m)",
+               np.abs(jumps[:, 0] - jumps[:, 1]).max(), 1e-15 + agree)
 
     # 1. the law: beta = closed form at the jump, the reported stress with the frozen beta
-    ck.at_most("max |beta - beta_closed(un)|", np.abs(beta - law.beta(un, 1)).max(), 1e-12,
+    ck.at_most("max |beta - beta_closed(un)|", np.abs(beta - law.beta(un, mode)).max(), 1e-12,
                note="internals vs closed form")
     beta_prev = np.concatenate([[1.0], beta[:-1]])
     ident = np.abs(sig - beta_prev ** k * c * un).max() / smax
@@ -77,33 +89,38 @@ def main():
     ck.rel(f"peak stress (Pa) = {law.family} closed form", sig[i_pk], smax, PEAK_TOL,
            note=f"a-priori lag bound {gen.FINE:.1%} (fine), {gen.GROWTH:.2%} (geometric)")
     if law.family != "TH":       # TH: the whole plateau [di, dp] is at the peak
-        # Meshed: the lower block stretches by cn/(E/h) = 0.1 % of the opening, one fine
-        # step at the peak, so the schedule's phases shift by one step.
-        steps = 3.0 if mesh else 2.0
+        # Meshed: the lower block's free face rings in a period-2 mode (theta = 1/2 does
+        # not damp omega h >> 1; excited by the schedule's velocity kink), so the jump
+        # increments alternate by +-5 % around the fine step: the peak can move by a step
+        # or two.
+        steps = 4.0 if mesh else 2.0
         ck.close("opening at peak / d_peak", un[i_pk] / dpk, 1.0, steps * gen.FINE, note=f"{steps:.0f} fine steps")
 
     # 3. the curve: one step of lag, |sigma_k - sigma(u_k)| <= |sigma(u_{k-1}) - sigma(u_k)|
     #    + sigma(u_{k-1}) (u_k - u_{k-1})/u_{k-1}, and below CURVE_TOL sigma_max overall
-    closed = law.sigma(un, 1)
+    closed = law.sigma(un, mode)
     dev = np.abs(sig - closed)
     un_prev = np.concatenate([[0.0], un[:-1]])
-    s_prev = law.sigma(un_prev, 1)
+    s_prev = law.sigma(un_prev, mode)
     with np.errstate(divide="ignore", invalid="ignore"):
         lag = np.abs(s_prev - closed) + np.where(un_prev > 0, s_prev * (un - un_prev) / un_prev, 0.0)
-    ck.at_most("max |sigma - sigma_closed(un)| / sigma_max", dev.max() / smax, CURVE_TOL)
+    # TH in sliding: the linear decay after the plateau, s2/(du - dp2) = 1e11 Pa/m, loses
+    # 0.75 % of s2 per geometric step (u/400 at dp2) on top of the 0.25 % lag: 1.0 %.
+    curve_tol = 1.5e-2 if mode == 2 and law.family == "TH" else CURVE_TOL
+    ck.at_most("max |sigma - sigma_closed(un)| / sigma_max", dev.max() / smax, curve_tol)
     ck.at_most("max excess over the one-step lag bound / sigma_max",
                max(0.0, (dev - lag).max()) / smax, 1e-9)
 
     # 4. energies (J per m of thickness)
     s = run.series
     d_end = un[-1]
-    dmg_ref = law.damage(d_end, 1) * gen.GLUED
+    dmg_ref = law.damage(d_end, mode) * gen.GLUED
     ck.rel("damage_dissipated (J/m) = G L (1 - tail)", s["damage_dissipated"][-1], dmg_ref, ENERGY_TOL,
            note=f"closed form at the final opening {d_end / dpk:.1f} d_peak")
     ck.rel("damage_dissipated (J/m) = G L (nominal G)", s["damage_dissipated"][-1],
-           law.nominal_energy(1) * gen.GLUED, ENERGY_TOL)
+           law.nominal_energy(mode) * gen.GLUED, ENERGY_TOL)
     ck.close("cohesive_energy at the end (J/m) = L/2 beta^k c un^2", s["cohesive_energy"][-1],
-             law.stored(d_end, 1) * gen.GLUED, 1e-9 * G)
+             law.stored(d_end, mode) * gen.GLUED, 1e-9 * G)
     ck.at_most("|balance_error| / (G L)", np.abs(s["balance_error"]).max() / (G * gen.GLUED), 1e-9,
                note="work_supports = stored + dissipated")
     # before the peak nothing is damaged, but the spring force c u_k over the step's
@@ -121,7 +138,7 @@ def main():
     if law.family == "MAC":
         ck.true("MAC: not broken (beta > 0 only decays as d^-2)", bool(np.all(p.broken[-1] == 0) and beta[-1] > 0))
     else:
-        i_cut = int(np.argmax(un >= law.d_end(1)))
+        i_cut = int(np.argmax(un >= law.d_end(mode)))
         ck.true("broken = 1 from the cut-off opening on, 0 before",
                 bool(np.all(p.broken[i_cut:] == 1) and np.all(p.broken[:i_cut] == 0)
                      and np.all(p.beta[i_cut:] == 0.0)),

@@ -11,12 +11,16 @@ beta then changes the stress by at most 0.25 % near the peak (README.md). The pa
 (import gen). Run once; the generated DATBOX folders are committed.
 
     gen.py [LAW ...]              the rigid decks (committed)
-    gen.py --mesh OUT_DIR LAW     the same scene with meshed blocks: two 1 m x 1 m Q4
+    gen.py --mesh OUT_DIR LAW [--shear]
+                                  the same scene with meshed blocks: two 1 m x 1 m Q4
                                   MAILx bodies (E = 1e14 Pa, nu = 0: rigid next to the
                                   interface, no lateral contraction), glued by the gap law
                                   (MAC_CZM, MP3_CZM, ...) through CLALp contacts: two
                                   CLxxx points of L = 0.5 m on the upper block's bottom
-                                  edge against the lower block's top edge (ALpxx)
+                                  edge against the lower block's top edge (ALpxx);
+                                  --shear: the upper block slides along x instead (its y
+                                  held), the interface in pure mode II (gap law, u_n = 0):
+                                  the lower block's bottom is held and its face's y too
 """
 import sys
 from pathlib import Path
@@ -51,13 +55,13 @@ LAWS = {
 }
 
 
-def schedule(name):
+def schedule(name, mode=1):
     """(n1, n2, table): steps of the uniform phases (elastic, then fine) and of the
-    geometric phase of the opening, and the velocity table (t, vy). In the geometric phase u(t) = u1 exp((t - t1)/tau),
-    tau = DT/GROWTH, so vy = u/tau."""
+    geometric phase of the opening (mode 2: the slip), and the velocity table (t, v). In the geometric phase u(t) = u1 exp((t - t1)/tau),
+    tau = DT/GROWTH, so v = u/tau."""
     law = LAWS[name][1]
-    dpk = law.d_peak(1)
-    d_end = 20.0 * dpk if law.family == "MAC" else 1.1 * law.d_end(1)
+    dpk = law.d_peak(mode)
+    d_end = 20.0 * dpk if law.family == "MAC" else 1.1 * law.d_end(mode)
     return ramp_schedule(dpk, d_end, DT, ELASTIC, NEAR, FINE, SWITCH, GROWTH)
 
 
@@ -83,17 +87,18 @@ def build(name):
 MESH_E = 1.0e14        # Young's modulus of the meshed blocks (Pa): E/h = 1000 cn
 
 
-def build_mesh(name):
-    """The scene with two Q4 MAILx blocks and the gap variant of the law (README.md)."""
+def build_mesh(name, shear=False):
+    """The scene with two Q4 MAILx blocks and the gap variant of the law (README.md);
+    shear: the upper block driven along x (mode II schedule), y held."""
     import numpy as np
     from fracas_tools import Case
     from fracas_tools.mesh import mesh_from_arrays
     law_name, law = LAWS[name]
-    n1, n2, table = schedule(name)
+    n1, n2, table = schedule(name, 2 if shear else 1)
     nodes = np.array([(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5),
                       (-0.5, 0.5), (0.5, 0.5), (0.5, 1.5), (-0.5, 1.5)])
     mesh = mesh_from_arrays(nodes, [(0, 1, 2, 3), (4, 5, 6, 7)], ["lower", "upper"],
-                            node_groups={"bottom": [0, 1], "corner": [0], "upper": [4, 5, 6, 7]},
+                            node_groups={"bottom": [0, 1], "corner": [0], "face": [2, 3], "upper": [4, 5, 6, 7]},
                             edge_groups={"face_lo": [(3, 2)], "face_up": [(4, 5)]})
     case = Case(gravity=(0.0, 0.0))
     case.add_material("STIFF", RHO, "ELAS", young=MESH_E, poisson=0.0)
@@ -103,9 +108,17 @@ def build_mesh(name):
     lower.add_polyline_on("face_lo", "BLEUx")
     case.add_see("CLxxx", "BLEUx", "ALpxx", "BLEUx", "czm01", ALERT)
     lower.impose_velocity("bottom", (2,))
-    lower.impose_velocity("corner", (1,))
-    upper.impose_evolution("upper", 2, "vlocy", "vy.dat", data=table)
-    upper.impose_velocity("upper", (1,))
+    if shear:
+        # The shear load would tilt the lower block's face (one point pressed, one
+        # opened, friction on the pressed one): its y is held, its x left free, so the
+        # slip still passes through the block's compliance.
+        lower.impose_velocity("bottom", (1,))
+        lower.impose_velocity("face", (2,))
+    else:
+        lower.impose_velocity("corner", (1,))
+    driven, held = (1, 2) if shear else (2, 1)
+    upper.impose_evolution("upper", driven, "vlocy", "v.dat", data=table)
+    upper.impose_velocity("upper", (held,))
     case.run.set(time_step=DT, number_of_steps=n1 + n2, theta=0.5, nlgs_check="Quad",
                  nlgs_tolerance=1e-6, output_hdf5_every=1, output_dof_every=0,
                  output_vtk_every=0, progress_every=0)
@@ -114,8 +127,8 @@ def build_mesh(name):
 
 if __name__ == "__main__":
     if sys.argv[1:2] == ["--mesh"]:
-        build_mesh(sys.argv[3]).write(Path(sys.argv[2]))
-        print(f"wrote {sys.argv[2]}/DATBOX (meshed, {sys.argv[3]})")
+        build_mesh(sys.argv[3], "--shear" in sys.argv[4:]).write(Path(sys.argv[2]))
+        print(f"wrote {sys.argv[2]}/DATBOX (meshed, {sys.argv[3]}{', shear' if '--shear' in sys.argv else ''})")
         sys.exit(0)
     for name in (sys.argv[1:] or LAWS):
         build(name).write(HERE / name)
