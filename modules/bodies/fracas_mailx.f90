@@ -1000,35 +1000,43 @@ contains
     subroutine set_compliance(m, b, set)
       type(mailx_t), intent(inout) :: m
       integer, intent(in) :: b, set(:)
-      integer :: i, d, ns, nd, n0
-      real(wp), allocatable :: e(:, :), ef(:, :)
+      ! Unit impulses at the set's dofs solved on the free dofs, a block of columns at
+      ! a time, keeping only the set's rows: all columns of a large body with many
+      ! contact nodes at once would not fit in memory (2e5 dofs x 900 columns: 1.4 GB
+      ! per copy).
+      integer, parameter :: block = 64
+      integer :: i, d, ns, n0, nf, c1, c2, j
+      integer, allocatable :: frow(:)
+      real(wp), allocatable :: ef(:, :)
       ns = size(set)
       n0 = m%node_first(b) - 1
-      nd = body_ndof(m, b)
-      m%cslot(n0 + 1:n0 + nd / 2) = 0
+      m%cslot(n0 + 1:n0 + body_ndof(m, b) / 2) = 0
       do i = 1, ns
         m%cslot(set(i)) = i
       end do
-      ! columns: unit impulses at the set's dofs, solved together on the free dofs
-      allocate (e(nd, 2 * ns))
-      e = 0.0_wp
-      do i = 1, ns
-        do d = 1, 2
-          e(2 * (set(i) - n0 - 1) + d, 2 * (i - 1) + d) = 1.0_wp
-        end do
-      end do
       associate (bb => m%big(b))
-        ef = e(pack([(i, i=1, nd)], bb%free_of > 0), :)
-        call factor_solve(bb%f, ef)
-        e = 0.0_wp
-        do i = 1, nd
-          if (bb%free_of(i) > 0) e(i, :) = ef(bb%free_of(i), :)
+        nf = count(bb%free_of > 0)
+        allocate (frow(2 * ns))          ! free index of each set dof (0: driven)
+        do i = 1, ns
+          do d = 1, 2
+            frow(2 * (i - 1) + d) = bb%free_of(2 * (set(i) - n0 - 1) + d)
+          end do
         end do
         if (allocated(bb%c)) deallocate (bb%c)
         allocate (bb%c(2 * ns, 2 * ns))
-        do i = 1, ns
-          bb%c(2 * i - 1, :) = e(2 * (set(i) - n0) - 1, :)
-          bb%c(2 * i, :) = e(2 * (set(i) - n0), :)
+        do c1 = 1, 2 * ns, block
+          c2 = min(2 * ns, c1 + block - 1)
+          allocate (ef(nf, c2 - c1 + 1))
+          ef = 0.0_wp
+          do j = c1, c2
+            if (frow(j) > 0) ef(frow(j), j - c1 + 1) = 1.0_wp
+          end do
+          call factor_solve(bb%f, ef)
+          do j = 1, 2 * ns
+            bb%c(j, c1:c2) = 0.0_wp
+            if (frow(j) > 0) bb%c(j, c1:c2) = ef(frow(j), :)
+          end do
+          deallocate (ef)
         end do
         bb%cnodes = set
       end associate
