@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """Mesh and time-step sensitivity of one crack path (doc/fracture.md): the
-Kalthoff-Winkler case (test_cases/validation_fracture/kalthoff) on three meshes
-(lc = 3, 2.5, 2 mm at dt = 0.25 us) and two time steps (dt = 0.25, 0.125 us at
+Kalthoff-Winkler case (test_cases/validation_fracture/kalthoff) on four meshes
+(lc = 3, 2.5, 2, 1.5 mm at dt = 0.25 us) and two time steps (dt = 0.25, 0.125 us at
 lc = 2.5 mm): crack angle at the notch tip, where the tip is at 60 us, the tip speed,
-the energy audit, the run time. Takes about 15 min on one idle core (label long:
-not in ctest; results committed in doc/fracture.md).
+the energy audit, the run time. Takes about 35 min on one idle core (not in ctest;
+results committed in doc/fracture.md).
 
     sensitivity.py WORK_DIR [--fracas build/release/bin/fracas] [--png OUT.png] [--reuse]
 """
