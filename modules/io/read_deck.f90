@@ -167,27 +167,38 @@ contains
   !> Warn when DOF.INI displaces an elastoplastic meshed body that GPV.INI gives
   !> no Gauss-point values for: its plastic strain would restart at zero, with
   !> stresses recomputed elastically from the displacement (not the state the
-  !> displacement came from).
+  !> displacement came from). Flags per body first: exploded meshes have a body
+  !> (and a DOF.INI record) per element.
   subroutine check_plastic_restart(deck)
     type(deck_t), intent(in) :: deck
-    integer :: k, ib, ie, im
-    logical :: plastic
+    logical, allocatable :: plastic(:), has_gpv(:)   ! per MAILx body number
+    integer :: k, ie, n
+    n = 0
+    do k = 1, size(deck%bodies)
+      if (deck%bodies(k)%model == 'MAILx') n = max(n, deck%bodies(k)%number)
+    end do
+    allocate (plastic(n), has_gpv(n))
+    plastic = .false.
+    has_gpv = .false.
+    do k = 1, size(deck%bodies)
+      associate (b => deck%bodies(k))
+        if (b%model /= 'MAILx') cycle
+        do ie = 1, size(b%elements)
+          plastic(b%number) = plastic(b%number) .or. &
+            any(deck%models%nickname == b%elements(ie)%model .and. deck%models%material == 'J2iso')
+        end do
+      end associate
+    end do
+    do k = 1, size(deck%gpv_ini)
+      if (deck%gpv_ini(k)%body >= 1 .and. deck%gpv_ini(k)%body <= n) has_gpv(deck%gpv_ini(k)%body) = .true.
+    end do
     do k = 1, size(deck%dof_ini)
       associate (r => deck%dof_ini(k))
         if (r%model /= 'MAILx' .or. .not. allocated(r%node_x)) cycle
+        if (r%body < 1 .or. r%body > n) cycle
+        if (.not. plastic(r%body) .or. has_gpv(r%body)) cycle
         if (all(r%node_x == 0.0_wp)) cycle
-        if (any(deck%gpv_ini%body == r%body)) cycle
-        plastic = .false.
-        do ib = 1, size(deck%bodies)
-          if (deck%bodies(ib)%model /= 'MAILx' .or. deck%bodies(ib)%number /= r%body) cycle
-          do ie = 1, size(deck%bodies(ib)%elements)
-            do im = 1, size(deck%models)
-              if (deck%models(im)%nickname == deck%bodies(ib)%elements(ie)%model .and. &
-                  deck%models(im)%material == 'J2iso') plastic = .true.
-            end do
-          end do
-        end do
-        if (plastic) call warn(trim(r%src%file)//':'//itoa(r%src%line)//': DOF.INI displaces MAILx body '// &
+        call warn(trim(r%src%file)//':'//itoa(r%src%line)//': DOF.INI displaces MAILx body '// &
           itoa(r%body)//', which is elastoplastic (J2iso), but GPV.INI gives no Gauss-point values for it: '// &
           'its plastic strain restarts at zero and its stresses are recomputed elastically from the '// &
           'displacement. For an exact restart, give as GPV.INI the GPV.OUT.n written with that DOF.OUT.n')
