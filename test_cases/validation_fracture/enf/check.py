@@ -49,39 +49,38 @@ def branch_length(delta, half_span):
     return 0.5 * (lo + hi)
 
 
-def energy_per_growth(s):
-    """Damage dissipated per broken length in units of G_c: the slope of a least-squares
-    line through (crack length, damage dissipated) at the steps where an interface point
-    breaks (the process zone is then in the same state each time, which the ends of a
-    window are not), over the window opened by stable_window."""
-    c, dd = s["crack_length"], s["damage_dissipated"]
-    events = np.nonzero(np.diff(c) > 0.0)[0] + 1
-    return events, c[events], dd[events] / GC
+def load_curve(s, p):
+    """The imposed deflection at every step, and the load P = dW/ddelta from the work of
+    the drive on the steps i it can be centred on."""
+    delta = ramped_displacement(s["time"], p["t_ramp"], p["v"])
+    i, load = load_from_work(s["time"], s["work_supports"], delta, p["window"])
+    return delta, i, load
 
 
-def stable_window(p, s):
+def stable_window(p, s, delta):
     """Steps of stable growth once the process zone has formed (the crack has grown
     p["grown"]) while the LEFM crack length is below p["a_max"] L."""
-    delta = ramped_displacement(s["time"], p["t_ramp"], p["v"])
     return (s["crack_length"] >= p["grown"]) & (branch_length(delta, p["half_span"]) <= p["a_max"] * p["half_span"])
 
 
 def growth_energy(s, p):
-    """(slope, number of break events, crack range) of energy_per_growth on the window."""
-    events, crack, dd = energy_per_growth(s)
-    on = stable_window(p, s)[events]
-    slope = np.polyfit(crack[on], dd[on], 1)[0]
-    return float(slope), int(on.sum()), (crack[on][0], crack[on][-1])
+    """Damage dissipated per broken length in units of G_c: the slope of a least-squares
+    line through (crack length, damage dissipated) at the steps where an interface point
+    breaks (the process zone is then in the same state each time, which the ends of a
+    window are not), on stable_window. Returns (slope, break events, crack range)."""
+    c, dd = s["crack_length"], s["damage_dissipated"]
+    events = np.nonzero(np.diff(c) > 0.0)[0] + 1
+    on = events[stable_window(p, s, ramped_displacement(s["time"], p["t_ramp"], p["v"]))[events]]
+    slope = np.polyfit(c[on], dd[on] / GC, 1)[0]
+    return float(slope), len(on), (c[on][0], c[on][-1])
 
 
-def branch_deviation(s, p, d_range=None):
-    """Mean of P / P_LEFM(delta) - 1 over the deflections d_range (default: those of
-    stable_window); returns it and the range."""
-    t = s["time"]
-    delta = ramped_displacement(t, p["t_ramp"], p["v"])
-    i, load = load_from_work(t, s["work_supports"], delta, p["window"])
+def branch_deviation(curve, s, p, d_range=None):
+    """Mean of P / P_LEFM(delta) - 1 on the load curve over the deflections d_range
+    (default: those of stable_window); returns it and the range."""
+    delta, i, load = curve
     if d_range is None:
-        on = stable_window(p, s)[i]
+        on = stable_window(p, s, delta)[i]
         d_range = (delta[i][on][0], delta[i][on][-1])
     on = (delta[i] >= d_range[0]) & (delta[i] <= d_range[1])
     dev = load[on] / critical_load(branch_length(delta[i][on], p["half_span"])) - 1.0
@@ -95,10 +94,9 @@ def main():
     mr = MeshRun(run_dir_from_argv())
     ck = Checker(f"fracture enf ({variant})")
     s = mr.series
-    t = s["time"]
-    delta = ramped_displacement(t, p["t_ramp"], p["v"])     # the imposed mid-span deflection
+    curve = load_curve(s, p)                # the imposed mid-span deflection and the load
+    delta, i, load = curve
     work = s["work_supports"]
-    i, load = load_from_work(t, work, delta, p["window"])
     d_mid = delta[i]
     ipk = int(np.argmax(load))
     p_peak, d_peak = load[ipk], d_mid[ipk]
@@ -119,7 +117,7 @@ def main():
                      f"{(broken + s['damaged_length'][-1]) * 1e3:.2f} mm")
         check_energy(ck, s)
         return ck.finish()
-    dev, d_range = branch_deviation(s, p)
+    dev, d_range = branch_deviation(curve, s, p)
     window = f"delta {d_range[0] * 1e3:.4f}..{d_range[1] * 1e3:.4f} mm"
     ck.info(f"propagation: mean P / P_LEFM(delta) - 1 (h = {p['dt']:.3g} s)", dev, note=window)
     slope, n, (c1, c2) = growth_energy(s, p)
@@ -131,7 +129,7 @@ def main():
         pc = gen.params(sys.argv[4])
         sc = MeshRun(Path(sys.argv[3])).series
         r = pc["dt"] / p["dt"]
-        coarse_dev, _ = branch_deviation(sc, pc, d_range)
+        coarse_dev, _ = branch_deviation(load_curve(sc, pc), sc, pc, d_range)
         ck.info(f"propagation: mean P / P_LEFM(delta) - 1 (h = {pc['dt']:.3g} s)", coarse_dev,
                 note=f"same window; excess ratio {coarse_dev / dev:.2f} (first order: {r:.0f})")
         ck.at_most("propagation: |mean P / P_LEFM - 1| extrapolated to h -> 0",
