@@ -12,11 +12,21 @@ module fracas_contact_laws
   private
   public :: law_t, law_from_input, law_friction, law_shift, law_local_problem, &
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
-            law_vel_sgr_clb, law_rst_ds_clb, law_czm
+            law_vel_sgr_clb, law_rst_ds_clb, law_czm, cohesive_elimination, coh_size, coh_law, coh_u0t, &
+            coh_h, coh_factor, coh_released
 
   !> Gaps below this (m) count as closed for the laws that act only on closed
   !> contacts: far below any physical length, far above round-off of coordinates.
   real(wp), parameter :: closed_gap = 1.0e-14_wp
+
+  !> Layout of a cohesive contact's step data coh(coh_size): A = (I - W K)^-1 (1:4),
+  !> W' = A W (5:8), a (9:10), K (11:12) at the spring factor beta0^k; coh_law: the
+  !> law's index when damage is solved within the step (0: LMGC90's explicit update);
+  !> coh_u0t: tangential jump at the start of the step; coh_h: time step; coh_factor:
+  !> the step's spring factor over beta0^k (1 while it does not damage; the impulse
+  !> is coh_factor (a + K u~)); coh_released: the damage energy the contact released
+  !> in the step (J per unit thickness), once the step is solved.
+  integer, parameter :: coh_size = 17, coh_law = 13, coh_u0t = 14, coh_h = 15, coh_factor = 16, coh_released = 17
 
   integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
                         law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
@@ -238,8 +248,8 @@ contains
   !> contact and its Delassus block w (tt, tn, nt, nn);
   !> out: the velocity shift, friction mu, whether the contact takes a reaction
   !> this step, and for a cohesive contact (beta > 0) the cohesive impulse
-  !> r_coh = a + K u~ eliminated locally: coh = (A (4), W' = A W (4), a (2),
-  !> K (2)), A = (I - W K)^-1; weff is the block the local solver solves with
+  !> r_coh = a + K u~ at the start damage beta0, eliminated locally (coh, see
+  !> coh_size; coh_law is left 0); weff is the block the local solver solves with
   !> (W, or W' with cohesion). solvable = .false. for a zero or singular block
   !> (both sides driven): no contact reaction then, while the cohesive impulse
   !> still follows from the law.
@@ -248,16 +258,15 @@ contains
     type(law_t), intent(in) :: law
     real(wp), intent(in) :: gap, h, u_begin(2), internals(:), length, w(4)
     integer, intent(in) :: status_begin
-    real(wp), intent(out) :: shift(2), mu, coh(12), weff(4)
+    real(wp), intent(out) :: shift(2), mu, coh(coh_size), weff(4)
     logical, intent(out) :: active, cohesive, solvable
-    real(wp) :: wt(4), beta, e, kt, kn, m(4), det, amat(4), wp_(4), at
+    real(wp) :: beta, e, kt, kn
     call law_shift(law, gap, h, u_begin, shift, active)
     mu = law_friction(law, status_begin)
     cohesive = .false.
     coh = 0.0_wp
-    wt = w
     if (law%kind == law_czm) then
-      ! beta frozen over the step: friction mu (1 - beta)^p and the impulse
+      ! beta0 (start of the step) sets the friction mu (1 - beta0)^p and the impulse
       ! r_coh = a + K u~ (u~ = u + shift): (I - W K) u~ = u~free + W a + W r_c.
       beta = internals(4)
       mu = mu * (1.0_wp - beta)**law%czm%friction_power
@@ -266,29 +275,40 @@ contains
         e = beta**czm_beta_power(law%czm) * length
         kt = -h**2 * e * law%czm%ct
         kn = -h**2 * e * law%czm%cn
-        at = -h * e * law%czm%ct * internals(2)     ! tangential jump at the beginning of the step
-        m = [1.0_wp - wt(1) * kt, -wt(2) * kn, -wt(3) * kt, 1.0_wp - wt(4) * kn]
-        det = m(1) * m(4) - m(2) * m(3)
-        amat = [m(4), -m(2), -m(3), m(1)] / det
-        wp_(1) = amat(1) * wt(1) + amat(2) * wt(3)
-        wp_(2) = amat(1) * wt(2) + amat(2) * wt(4)
-        wp_(3) = amat(3) * wt(1) + amat(4) * wt(3)
-        wp_(4) = amat(3) * wt(2) + amat(4) * wt(4)
-        coh(1:4) = amat
-        coh(5:8) = wp_
-        coh(9:10) = [at, 0.0_wp]
+        coh(9:10) = [-h * e * law%czm%ct * internals(2), 0.0_wp]  ! from the tangential jump at the start
         coh(11:12) = [kt, kn]
+        call cohesive_elimination(w, kt, kn, coh(1:4), coh(5:8), solvable)
+        coh(coh_u0t) = internals(2)
+        coh(coh_h) = h
+        coh(coh_factor) = 1.0_wp
         ! The tensile cohesive impulse also acts while the gap is open, and
         ! between bodies whose normal motion is driven.
         active = .true.
-        weff = wp_
-        solvable = wp_(1) * wp_(4) - wp_(2) * wp_(3) > 1.0e-30_wp * max(wp_(4), tiny(1.0_wp))**2 .and. &
-                   wp_(4) > 1.0e-18_wp
+        weff = coh(5:8)
         return
       end if
     end if
-    weff = wt
-    active = active .and. wt(4) > 1.0e-18_wp
+    weff = w
+    active = active .and. w(4) > 1.0e-18_wp
     solvable = active
   end subroutine law_local_problem
+
+  !> Elimination of a cohesive impulse K u~ (K = diag(kt, kn)) from u~ = u~free + W r:
+  !> A = (I - W K)^-1 and the block W' = A W the contact part is solved with;
+  !> solvable = .false. when W' is zero or singular (both sides driven).
+  pure subroutine cohesive_elimination(w, kt, kn, amat, wprime, solvable)
+    real(wp), intent(in) :: w(4), kt, kn
+    real(wp), intent(out) :: amat(4), wprime(4)
+    logical, intent(out) :: solvable
+    real(wp) :: m(4), det
+    m = [1.0_wp - w(1) * kt, -w(2) * kn, -w(3) * kt, 1.0_wp - w(4) * kn]
+    det = m(1) * m(4) - m(2) * m(3)
+    amat = [m(4), -m(2), -m(3), m(1)] / det
+    wprime(1) = amat(1) * w(1) + amat(2) * w(3)
+    wprime(2) = amat(1) * w(2) + amat(2) * w(4)
+    wprime(3) = amat(3) * w(1) + amat(4) * w(3)
+    wprime(4) = amat(3) * w(2) + amat(4) * w(4)
+    solvable = wprime(1) * wprime(4) - wprime(2) * wprime(3) > 1.0e-30_wp * max(wprime(4), tiny(1.0_wp))**2 .and. &
+               wprime(4) > 1.0e-18_wp
+  end subroutine cohesive_elimination
 end module fracas_contact_laws

@@ -8,7 +8,7 @@ module fracas_czm
   implicit none
   private
   public :: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo, czm_beta_update, czm_beta_power, &
-            czm_stored_energy, beta_broken
+            czm_stored_energy, beta_broken, czm_damage_energy, czm_step_dissipation, czm_step_factor
 
   integer, parameter :: czm_mac = 1, czm_mp3 = 2, czm_mal = 3, czm_th = 4, czm_expo = 5
   !> Below this beta the interface is broken (beta set to 0), as in LMGC90.
@@ -44,6 +44,31 @@ contains
     e = 0.5_wp * beta**czm_beta_power(p) * (p%cn * un**2 + p%ct * ut**2)
   end function czm_stored_energy
 
+  !> The envelope of a law (not MAC) in the mode of the jump (ut, un): mode mixity m in
+  !> [0, 1] (0: pure opening, 1: pure sliding; our rule, doc/czm.md: the mode I and
+  !> mode II parameters blended linearly), stiffness c, strength s, energy g and the
+  !> opening di at the end of the linear branch.
+  pure subroutine envelope(p, ut, un, c, s, g, di, m)
+    type(czm_t), intent(in) :: p
+    real(wp), intent(in) :: ut, un
+    real(wp), intent(out) :: c, s, g, di, m
+    real(wp) :: unp
+    unp = max(un, 0.0_wp)
+    m = 0.0_wp
+    if (ut /= 0.0_wp) m = ut**2 / (ut**2 + unp**2)
+    c = (1.0_wp - m) * p%cn + m * p%ct
+    select case (p%family)
+    case (czm_mp3)
+      s = p%smax
+      g = p%w
+      di = 0.5_wp * s * (1.0_wp / p%cn + 1.0_wp / p%ct)
+    case default
+      s = (1.0_wp - m) * p%s1 + m * p%s2
+      g = (1.0_wp - m) * p%g1 + m * p%g2
+      di = s / c
+    end select
+  end subroutine envelope
+
   !> Beta at the end of a step of length h, from beta_old and the end-of-step
   !> jumps (ut, un). Never larger than beta_old; below beta_broken it is 0.
   pure real(wp) function czm_beta_update(p, beta_old, ut, un, h) result(beta)
@@ -61,20 +86,7 @@ contains
     case default
       d = sqrt(unp**2 + ut**2)
       if (d <= 0.0_wp) return
-      ! Mode mixity m in [0, 1] (0: pure opening, 1: pure sliding) blends the
-      ! mode I and mode II parameters linearly (our rule, stated in doc/czm.md).
-      m = ut**2 / (ut**2 + unp**2)
-      c = (1.0_wp - m) * p%cn + m * p%ct
-      select case (p%family)
-      case (czm_mp3)
-        s = p%smax
-        g = p%w
-        di = 0.5_wp * s * (1.0_wp / p%cn + 1.0_wp / p%ct)
-      case default
-        s = (1.0_wp - m) * p%s1 + m * p%s2
-        g = (1.0_wp - m) * p%g1 + m * p%g2
-        di = s / c
-      end select
+      call envelope(p, ut, un, c, s, g, di, m)
       if (d <= di) return
       select case (p%family)
       case (czm_mp3, czm_mal)
@@ -109,4 +121,101 @@ contains
     end select
     if (beta < beta_broken) beta = 0.0_wp
   end function czm_beta_update
+
+  !> Energy per unit length a law has dissipated once its damage is beta, on a
+  !> monotonic path in the mode of the jump (ut, un): D(beta) = Phi(d) - 1/2 beta c d^2,
+  !> Phi the work of the envelope up to the opening d where it gives beta. A state
+  !> function of beta (for a fixed mode), so a sequence of steps dissipates exactly
+  !> D(beta_end) - D(1) whatever their size; D(0) is the law's fracture energy.
+  !> MAC (Y-driven, beta^2 traction): D = w (1 - beta), the viscous part aside.
+  pure real(wp) function czm_damage_energy(p, beta, ut, un) result(e)
+    type(czm_t), intent(in) :: p
+    real(wp), intent(in) :: beta, ut, un
+    real(wp) :: c, s, g, di, m, d, dk, x, dp, du, phi, f, lo, hi
+    integer :: it
+    if (p%family == czm_mac) then
+      e = p%w * (1.0_wp - beta)
+      return
+    end if
+    call envelope(p, ut, un, c, s, g, di, m)
+    select case (p%family)
+    case (czm_mp3, czm_mal)
+      ! beta = (di/d)(1 - x^2), d = di + dk x: di x^2 + beta dk x - di (1 - beta) = 0.
+      dk = 1.5_wp * (g / s - 0.5_wp * di)
+      x = min(1.0_wp, (-beta * dk + sqrt((beta * dk)**2 + 4.0_wp * di**2 * (1.0_wp - beta))) / (2.0_wp * di))
+      d = di + dk * x
+      e = 0.5_wp * c * di**2 + c * di * dk * (x - x**3 / 3.0_wp) - 0.5_wp * beta * c * d**2
+    case (czm_th)
+      dp = max(di, (1.0_wp - m) * p%dp1 + m * p%dp2)
+      du = 2.0_wp * g / s - dp + di
+      if (beta * dp >= di) then
+        d = di / beta                                   ! on the plateau
+        e = 0.5_wp * s * di + s * (d - di)
+      else
+        d = di * du / (beta * (du - dp) + di)            ! on the linear decay
+        e = 0.5_wp * s * di + s * (dp - di) + s * ((d - dp) - 0.5_wp * (d - dp)**2 / (du - dp))
+      end if
+      e = e - 0.5_wp * beta * c * d**2
+    case default
+      ! EXPO: beta c d = s exp(phi (di - d)) on [di, du), cut to 0 at du; the opening of
+      ! beta by Newton on log(c d beta / s) + phi (d - di) = 0 (increasing in d), bracketed.
+      phi = s / (g - 0.5_wp * s * di)
+      du = di - log(p%eta) / phi
+      d = du
+      if (beta > 0.0_wp) then
+        lo = di; hi = du; d = di
+        do it = 1, 100
+          f = log(c * d * beta / s) + phi * (d - di)
+          if (abs(f) <= 1.0e-14_wp) exit
+          if (f > 0.0_wp) then
+            hi = d
+          else
+            lo = d
+          end if
+          d = d - f / (1.0_wp / d + phi)
+          if (d <= lo .or. d >= hi) d = 0.5_wp * (lo + hi)
+        end do
+      end if
+      e = 0.5_wp * s * di + (s / phi) * (1.0_wp - exp(phi * (di - d))) - 0.5_wp * beta * c * d**2
+    end select
+    e = max(0.0_wp, e)
+  end function czm_damage_energy
+
+  !> Energy per unit length dissipated by damage in a step that takes beta from
+  !> beta0 to beta1 at the end-of-step jump (ut, un): D(beta1) - D(beta0)
+  !> (czm_damage_energy), plus for the viscous MAC law (b > 0) its viscous part
+  !> b (beta0 - beta1)^2 / h (implicit Euler of b beta' = -(w - beta Y)).
+  pure real(wp) function czm_step_dissipation(p, beta0, beta1, ut, un, h) result(e)
+    type(czm_t), intent(in) :: p
+    real(wp), intent(in) :: beta0, beta1, ut, un, h
+    e = 0.0_wp
+    if (beta1 >= beta0) return
+    e = max(0.0_wp, czm_damage_energy(p, beta1, ut, un) - czm_damage_energy(p, beta0, ut, un))
+    if (p%family == czm_mac) e = e + p%visco * (beta0 - beta1)**2 / h
+  end function czm_step_dissipation
+
+  !> The factor f of the cohesive traction f C u1 (u1 the end-of-step jump) that a
+  !> step applies with damage consistent within the step (doc/czm.md): beta0^k while
+  !> the step does not damage (the implicit spring of LMGC90), else the secant value
+  !> whose work over the step's jump u1 - u0 is the law's own energy along it,
+  !>   f u1.C(u1 - u0) = psi(beta1, u1) - psi(beta0, u0) + dissipation,
+  !> so that a crack costs its fracture energy whatever its opening per step. Kept in
+  !> [0, beta0^k]; beta1^k where the step does not open (u1.C(u1 - u0) <= 0).
+  pure real(wp) function czm_step_factor(p, beta0, beta1, u0, u1, h) result(f)
+    type(czm_t), intent(in) :: p
+    real(wp), intent(in) :: beta0, beta1, u0(2), u1(2), h
+    real(wp) :: work, den
+    integer :: k
+    k = czm_beta_power(p)
+    f = beta0**k
+    if (beta1 >= beta0) return
+    den = p%ct * u1(1) * (u1(1) - u0(1)) + p%cn * u1(2) * (u1(2) - u0(2))
+    if (den <= 0.0_wp) then
+      f = beta1**k
+      return
+    end if
+    work = czm_stored_energy(p, beta1, u1(1), u1(2)) - czm_stored_energy(p, beta0, u0(1), u0(2)) + &
+           czm_step_dissipation(p, beta0, beta1, u1(1), u1(2), h)
+    f = min(beta0**k, max(0.0_wp, work / den))
+  end function czm_step_factor
 end module fracas_czm

@@ -4,6 +4,7 @@
 !> indexed by candidate contactor so a new contact finds its past in O(1).
 module fracas_contacts
   use fracas_kinds, only: wp
+  use fracas_contact_laws, only: coh_size
   implicit none
   private
   public :: contacts_t, history_t, contacts_reserve, contacts_clear, history_from_contacts, &
@@ -36,11 +37,11 @@ module fracas_contacts
     real(wp), allocatable :: wi(:, :)        !< (6,n) what the local solver needs of its (effective) W
     real(wp), allocatable :: length(:)       !< length carried by the contact point (cohesive laws)
     ! Cohesive contacts: internals (L, ut, un, beta, time damage started) as
-    ! LMGC90 writes them, and the affine cohesive impulse r_coh = a + K u~
-    ! eliminated locally: coh = (A (4), W' = A W (4), a (2), K (2)), A = (I - W K)^-1.
+    ! LMGC90 writes them, and the step data of the cohesive impulse eliminated
+    ! locally (fracas_contact_laws: coh_size).
     real(wp), allocatable :: internals(:, :) !< (n_internals,n)
     logical, allocatable :: cohesive(:)
-    real(wp), allocatable :: coh(:, :)       !< (12,n)
+    real(wp), allocatable :: coh(:, :)       !< (coh_size,n)
     ! Meshed sides (scenes with meshes only): the nodes (mesh node numbers)
     ! and weights that give the velocity of the contact point on each side:
     ! v = mwt(1) v(mnode(1)) + mwt(2) v(mnode(2)) for the candidate, 3:4 for
@@ -79,9 +80,9 @@ contains
               c%u_begin(2, cap), c%wi(6, cap), c%length(cap), c%cohesive(cap))
     ! Only a scene with cohesive laws pays for their per-contact state.
     if (c%with_cohesion) then
-      allocate (c%internals(n_internals, cap), c%coh(12, cap))
+      allocate (c%internals(n_internals, cap), c%coh(coh_size, cap))
     else
-      allocate (c%internals(n_internals, 0), c%coh(12, 0))
+      allocate (c%internals(n_internals, 0), c%coh(coh_size, 0))
     end if
     if (c%with_mesh) then
       allocate (c%mnode(4, cap), c%mwt(4, cap))

@@ -202,6 +202,10 @@ module fracas_deck
     !> block of sweeps that evaluates without applying (yes), or by the changes of
     !> the block's last sweep (no) (doc/solver.md).
     logical :: nlgs_check_pass = .true.
+    !> Cohesive damage: solved with the contacts within each step, so that a crack
+    !> costs its fracture energy whatever the step ('implicit'), or LMGC90's update
+    !> after the step from the start-of-step damage ('explicit'; doc/czm.md).
+    character(len=8) :: cohesive_damage = 'implicit'
   end type run_control_t
 
   !> One command of POSTPRO.DAT (LMGC90's post-processing deck): its name as

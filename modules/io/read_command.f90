@@ -11,14 +11,14 @@ module fracas_read_command
   private
   public :: read_command, apply_command_setting, check_run_control, command_keywords
 
-  integer, parameter :: n_keys = 26
+  integer, parameter :: n_keys = 27
   character(len=21), parameter :: keys(n_keys) = [character(len=21) :: &
     'time_step', 'number_of_steps', 'final_time', 'theta', 'detection_frequency', &
     'nlgs_check', 'nlgs_tolerance', 'nlgs_relaxation', 'nlgs_sweeps_per_check', &
     'nlgs_max_checks', 'nlgs_order', 'nlgs_seed', 'output_dof_every', 'output_vtk_every', &
     'output_hdf5_every', 'progress_every', 'plane', 'newton_tolerance', 'newton_max_iterations', &
     'linear_solver', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision', 'driven_start', &
-    'detection_approach', 'nlgs_check_pass']
+    'detection_approach', 'nlgs_check_pass', 'cohesive_damage']
   integer, parameter :: k_time_step = 1, k_number_of_steps = 2, k_final_time = 3
   !> Largest NLGS sweep budget of a step (sweeps per check x checks).
   real(wp), parameter :: max_sweeps_per_step = 1.0e8_wp
@@ -203,6 +203,8 @@ contains
       s = 'one of auto, dense, cholmod'
     case ('driven_start')
       s = 'one of imposed, initial'
+    case ('cohesive_damage')
+      s = 'one of implicit, explicit'
     case ('detection_approach', 'nlgs_check_pass')
       s = 'one of yes, no'
     case ('nlgs_unconverged')
@@ -296,6 +298,13 @@ contains
       select case (lv)
       case ('imposed', 'initial')
         run%driven_start = lv
+      case default
+        call bad()
+      end select
+    case ('cohesive_damage')
+      select case (lv)
+      case ('implicit', 'explicit')
+        run%cohesive_damage = lv
       case default
         call bad()
       end select

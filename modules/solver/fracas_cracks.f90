@@ -16,8 +16,7 @@ module fracas_cracks
   use fracas_kinds, only: wp
   use fracas_contactors, only: tactors_t, tk_clxxx
   use fracas_contacts, only: contacts_t
-  use fracas_contact_laws, only: law_t, law_czm
-  use fracas_czm, only: czm_stored_energy
+  use fracas_contact_laws, only: law_t, law_czm, coh_released
   use fracas_mailx, only: mailx_t
   use fracas_ids, only: bm_mesh
   implicit none
@@ -138,8 +137,8 @@ contains
   !> a point (same antagonist contactor) speaks for it: a point may later see
   !> another antagonist within the alert distance (a new contact, without
   !> cohesion), which says nothing about its interface. step numbers the step.
-  !> The energy a glued point released in the step, L (e(beta_old) - e(beta))
-  !> at the end-of-step jumps (the solver's damage_dissipated), goes to its family.
+  !> The energy a glued point's contact released in the step (the solver's
+  !> damage_dissipated, coh(coh_released)) goes to its family.
   subroutine cracks_update(cr, c, laws, first, step)
     type(cracks_t), intent(inout) :: cr
     type(contacts_t), intent(in) :: c
@@ -147,7 +146,6 @@ contains
     logical, intent(in) :: first
     integer, intent(in) :: step
     integer :: k, p, e
-    real(wp) :: ut, un
     logical, allocatable :: present_now(:)
     if (cr%npts == 0) return
     allocate (present_now(cr%npts))
@@ -166,10 +164,8 @@ contains
       if (.not. cr%pt_glued(p) .or. c%an(k) /= cr%pt_an(p)) cycle
       present_now(p) = .true.
       if (c%internals(4, k) < cr%pt_beta(p)) then
-        ut = c%internals(2, k); un = c%internals(3, k)
-        associate (z => laws(c%law(k))%czm, f => cr%edge_family(cr%pt_edge(p)))
-          cr%family_damage(f) = cr%family_damage(f) + c%length(k) * &
-            (czm_stored_energy(z, cr%pt_beta(p), ut, un) - czm_stored_energy(z, c%internals(4, k), ut, un))
+        associate (f => cr%edge_family(cr%pt_edge(p)))
+          cr%family_damage(f) = cr%family_damage(f) + c%coh(coh_released, k)
         end associate
         cr%pt_beta(p) = c%internals(4, k)
       end if

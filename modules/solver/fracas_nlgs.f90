@@ -18,8 +18,8 @@ module fracas_nlgs
                           mailx_contact_dofs, &
                           mailx_velocity_from_impulses
   use fracas_contacts, only: contacts_t
-  use fracas_contact_laws, only: law_t, law_local_problem, law_czm
-  use fracas_czm, only: czm_beta_update, czm_stored_energy
+  use fracas_contact_laws, only: law_t, law_local_problem, law_czm, coh_size, coh_law, coh_factor, coh_released
+  use fracas_czm, only: czm_t, czm_beta_update, czm_stored_energy, czm_step_dissipation
   use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
   use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
   implicit none
@@ -36,6 +36,9 @@ module fracas_nlgs
     logical :: check_pass = .true.    !< LMGC90's check pass (else the change of the last sweep)
     character(len=8) :: order = 'stored'
     integer :: seed = 1
+    !> Cohesive damage solved with the contacts within each step (else LMGC90's
+    !> explicit update after the step, from the start-of-step damage).
+    logical :: damage_in_step = .true.
   end type nlgs_settings_t
 
   type :: nlgs_report_t
@@ -59,6 +62,7 @@ module fracas_nlgs
   type :: nlgs_t
     type(nlgs_settings_t) :: s
     type(rng_t) :: rng
+    type(czm_t), allocatable :: cz(:)      !< the cohesive part of each law (index: c%law)
     integer, allocatable :: order(:)
     real(wp), allocatable :: qfree(:, :)   !< (2,n) free local velocity incl. law shift
     integer :: np = 0                      !< active contacts (packed)
@@ -132,22 +136,24 @@ contains
     type(contacts_t), intent(in) :: c
     integer, intent(in) :: k, i
     rc = 0.0_wp
-    if (c%cohesive(k)) rc = c%coh(8 + i, k) + c%coh(10 + i, k) * (c%u(i, k) + c%shift(i, k))
+    if (c%cohesive(k)) rc = c%coh(coh_factor, k) * (c%coh(8 + i, k) + c%coh(10 + i, k) * (c%u(i, k) + c%shift(i, k)))
   end function cohesive_impulse
 
   !> After convergence: the jumps, the damage beta and the time damage started
   !> of the cohesive contacts (stored in internals), their statuses relabelled
   !> cohesive, and the energies: stored cohesive energy at the end of the step,
   !> work of the cohesive impulses -r_coh.(u + u_begin)/2 over the step, and the
-  !> energy released by damage: the drop of the stored energy when beta falls
-  !> at the end-of-step jumps (never negative).
+  !> energy released by damage (each contact's also in coh(coh_released)): with
+  !> damage solved within the step, the law's dissipation from beta0 to beta
+  !> (czm_step_dissipation); with LMGC90's explicit update, the drop of the stored
+  !> energy when beta falls at the end-of-step jumps (never negative).
   subroutine nlgs_update_cohesive(c, laws, h, t_end, stored, coh_work, released)
     type(contacts_t), intent(inout) :: c
     type(law_t), intent(in) :: laws(:)
     real(wp), intent(in) :: h, t_end
     real(wp), intent(out) :: stored, coh_work, released
     integer :: k
-    real(wp) :: ut, un, beta, rc(2), e_new
+    real(wp) :: ut, un, beta, rc(2), e_new, e_k
     stored = 0.0_wp
     coh_work = 0.0_wp
     released = 0.0_wp
@@ -161,7 +167,13 @@ contains
         beta = czm_beta_update(z, c%internals(4, k), ut, un, h)
         if (beta < 1.0_wp .and. c%internals(5, k) < 0.0_wp) c%internals(5, k) = t_end
         e_new = c%length(k) * czm_stored_energy(z, beta, ut, un)
-        released = released + c%length(k) * czm_stored_energy(z, c%internals(4, k), ut, un) - e_new
+        if (c%cohesive(k) .and. c%coh(coh_law, k) > 0.0_wp) then
+          e_k = c%length(k) * czm_step_dissipation(z, c%internals(4, k), beta, ut, un, h)
+        else
+          e_k = c%length(k) * czm_stored_energy(z, c%internals(4, k), ut, un) - e_new
+        end if
+        released = released + e_k
+        if (c%cohesive(k)) c%coh(coh_released, k) = e_k
         c%internals(1:4, k) = [c%length(k), ut, un, beta]
         stored = stored + e_new
         if (c%cohesive(k)) then
@@ -193,9 +205,10 @@ contains
     type(law_t), intent(in) :: laws(:)
     real(wp), intent(in) :: h
     integer :: k, a, o
-    real(wp) :: ht(3), hn(3), gt(3), gn(3), weff(4), coh(12), internals(5)
+    real(wp) :: ht(3), hn(3), gt(3), gn(3), weff(4), coh(coh_size), internals(5)
     logical :: active, cohesive, solvable
     if (c%with_mesh) call mesh_blocks(solver, c, m)
+    if (.not. allocated(solver%cz)) solver%cz = laws%czm
     internals = 0.0_wp
     do k = 1, c%n
       a = c%cdb(k); o = c%anb(k)
@@ -224,7 +237,10 @@ contains
                              c%length(k), c%w(:, k), c%shift(:, k), c%mu(k), active, cohesive, coh, weff, solvable)
       c%active(k) = active
       c%cohesive(k) = cohesive
-      if (cohesive) c%coh(:, k) = coh
+      if (cohesive) then
+        if (solver%s%damage_in_step) coh(coh_law) = c%law(k)
+        c%coh(:, k) = coh
+      end if
       c%wi(:, k) = 0.0_wp
       if (solvable) c%wi(:, k) = inverse_block(weff(1), weff(2), weff(3), weff(4), c%mu(k))
       if (.not. c%active(k)) then
@@ -684,7 +700,10 @@ contains
       rec(19) = c%mu(k)
       rec(20) = 0.0_wp
       icoh = 0
-      if (c%cohesive(k)) icoh = k
+      if (c%cohesive(k)) then
+        icoh = k
+        rec(20) = c%internals(4, k)
+      end if
     end subroutine record
 
     !> Impulses and statuses back to the contact store.
@@ -808,11 +827,12 @@ contains
       integer :: np
       np = solver%np
       report%updates = report%updates + np + solver%ng
-      call gs_sweep_2d_packed(np, solver%pb, solver%pc, solver%pcoh, solver%any_coh, c%coh, solver%pr, solver%pst, solver%bv, &
+      call gs_sweep_2d_packed(np, solver%pb, solver%pc, solver%pcoh, solver%any_coh, c%coh, solver%cz, solver%pr, &
+                              solver%pst, solver%bv, &
                               solver%s%relax, check, s6, maxes, evaluate_only)
       if (solver%ng > 0) then
         call gs_sweep_mesh(solver%ng, solver%gc, solver%gside, solver%ggm, solver%gfirst, solver%gslot, solver%gwt, &
-                           solver%gcoh, c%coh, solver%gr, solver%gst, solver%bv, solver%mv, solver%gmat, &
+                           solver%gcoh, c%coh, solver%cz, solver%gr, solver%gst, solver%bv, solver%mv, solver%gmat, &
                            solver%s%relax, check, g6, gmax, evaluate_only)
         s6 = s6 + g6
         maxes = max(maxes, gmax)

@@ -172,6 +172,7 @@ contains
       call h5_write_attr(g, 'output_hdf5_every', r%output_hdf5_every)
       call h5_write_attr(g, 'progress_every', r%progress_every)
       call h5_write_attr(g, 'driven_start', trim(r%driven_start))
+      call h5_write_attr(g, 'cohesive_damage', trim(r%cohesive_damage))
       call h5_write_attr(g, 'plane', trim(r%plane))
       call h5_write_attr(g, 'newton_tolerance', r%newton_tolerance)
       call h5_write_attr(g, 'newton_max_iterations', r%newton_max_iterations)

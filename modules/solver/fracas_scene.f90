@@ -207,6 +207,7 @@ contains
     ns%order = deck%run%nlgs_order
     ns%seed = deck%run%nlgs_seed
     ns%check_pass = deck%run%nlgs_check_pass
+    ns%damage_in_step = deck%run%cohesive_damage == 'implicit'
     call nlgs_init(sc%solver, ns)
 
   contains

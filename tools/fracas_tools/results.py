@@ -184,6 +184,15 @@ class Run:
         return self.attrs.get("time_step")
 
     @property
+    def cohesive_damage(self):
+        """The run's cohesive damage scheme: 'implicit' (solved within the step) or
+        'explicit' (LMGC90's update after the step; files written before the choice existed)."""
+        g = self.file.get("run")
+        if g is None or "cohesive_damage" not in g.attrs:
+            return "explicit"
+        return str(_attr(g.attrs["cohesive_damage"]))
+
+    @property
     def n_snapshots(self):
         return len(self.snapshot_names)
 
