@@ -4,7 +4,7 @@ module fracas_local_solver
   use fracas_kinds, only: wp
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw
   use fracas_czm, only: czm_t, czm_beta_update, czm_step_factor, czm_beta_power
-  use fracas_contact_laws, only: cohesive_elimination, coh_law, coh_u0t, coh_h, coh_factor
+  use fracas_contact_laws, only: cohesive_elimination, coh_law, coh_u0t, coh_u0n, coh_h, coh_factor
   implicit none
   private
   public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d_packed, gs_sweep_mesh
@@ -382,12 +382,10 @@ contains
       g = 1.0_wp
       if (law == 0) return
       associate (p => cz(law), h => coh(coh_h))
-        ! the jump at the end of the step; at its start (u0t, h shift_n): the normal
-        ! jump starts from the gap the law's shift carries
-        u1 = [coh(coh_u0t) + h * ut, h * un]
+        u1 = [coh(coh_u0t) + h * ut, h * un]          ! the law's jump at the end of the step
         beta0 = cr(20)
         beta1 = czm_beta_update(p, beta0, u1(1), u1(2), h)
-        g = czm_step_factor(p, beta0, beta1, [coh(coh_u0t), h * cr(18)], u1, h) / beta0**czm_beta_power(p)
+        g = czm_step_factor(p, beta0, beta1, [coh(coh_u0t), coh(coh_u0n)], u1, h) / beta0**czm_beta_power(p)
       end associate
     end subroutine solve_at
   end subroutine cohesive_step

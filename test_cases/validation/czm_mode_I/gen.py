@@ -65,10 +65,14 @@ def schedule(name, mode=1):
     return ramp_schedule(dpk, d_end, DT, ELASTIC, NEAR, FINE, SWITCH, GROWTH)
 
 
-def build(name):
+def build(name, table=None, steps=None):
+    """The rigid deck of law `name`; table, steps: another opening velocity schedule
+    (t, v) and its step count (czm_step_size) instead of the ramp."""
     from fracas_tools import Case
     law_name, law = LAWS[name]
-    n1, n2, table = schedule(name)
+    n1, n2, ramp = schedule(name)
+    table = ramp if table is None else table
+    steps = n1 + n2 if steps is None else steps
     case = Case(gravity=(0.0, 0.0))
     case.add_material("STONE", density=RHO)
     law.add_to(case, "czm01", law_name, MU)
@@ -78,7 +82,7 @@ def build(name):
     upper = case.add_polygon([(-0.5, 0.5), (0.5, 0.5), (0.5, 1.5), (-0.5, 1.5)], "STONE")
     upper.impose_evolution(2, "vlocy", "vy.dat", data=table)
     upper.impose_velocity(3)
-    case.run.set(time_step=DT, number_of_steps=n1 + n2, theta=0.5, nlgs_check="Quad",
+    case.run.set(time_step=DT, number_of_steps=steps, theta=0.5, nlgs_check="Quad",
                  nlgs_tolerance=1e-6, output_hdf5_every=1, output_dof_every=0,
                  output_vtk_every=0, progress_every=0)
     return case
