@@ -73,7 +73,6 @@ program kernel_bench
   use fracas_errors, only: fatal
   use fracas_random, only: rng_t, rng_seed, rng_permute
   use fracas_local_solver, only: gs_sweep_2d_packed, pk_size, inverse_block, inverse_block_3d
-  use fracas_czm, only: czm_t
   use fracas_contact_laws, only: coh_size
   use fracas_ids, only: st_stick, st_slifw, st_slibw, st_noctc
   use kernel_bench_kernels, only: gs3d
@@ -207,7 +206,6 @@ contains
     integer, allocatable :: body(:, :), order(:), bod(:, :)
     real(wp), allocatable :: x(:, :), v(:, :), im(:, :), geo(:, :), w(:, :), wi(:, :), shift(:, :), mu(:)
     real(wp), allocatable :: bb(:, :), rr(:, :), coh(:, :), pcr(:, :)
-    type(czm_t), allocatable :: nocz(:)
     integer, allocatable :: picoh(:), pst(:)
     real(wp) :: rad, h, g, n1, n2, ht(3), hn(3), gt(3), gn(3), t0, sums(6), maxes(2), best
     integer :: rep
@@ -263,7 +261,7 @@ contains
       wi(:, k) = inverse_block(w(1, k), w(2, k), w(3, k), w(4, k), mu(k))
       shift(:, k) = 0.0_wp
     end do
-    allocate (coh(coh_size, 1), nocz(0))
+    allocate (coh(coh_size, 1))
     coh = 0.0_wp
     allocate (bb(6, nb), rr(2, nc), bod(2, nc), pcr(pk_size, nc), picoh(nc), pst(nc))
     picoh = 0
@@ -285,7 +283,7 @@ contains
       rr = 0.0_wp
       call reset_v2(v, im, g * h)
       bb(1:3, :) = v; bb(4:6, :) = im
-      call gs_sweep_2d_packed(nc, bod, pcr, picoh, .false., coh, nocz, rr, pst, bb, 1.0_wp, .true., sums, maxes)
+      call gs_sweep_2d_packed(nc, bod, pcr, picoh, .false., coh, rr, pst, bb, 1.0_wp, .true., sums, maxes)
       if (pass == 1) write (output_unit, '(a,3(i0,a),es10.3)') '#  statuses after a check sweep: ', &
         count(pst == st_stick), ' stick, ', count(pst == st_slifw .or. pst == st_slibw), ' slide, ', &
         count(pst == st_noctc), ' open; max |r| ', maxval(abs(rr))
@@ -293,7 +291,7 @@ contains
       do rep = 1, nrep
         t0 = now()
         do j = 1, nsw
-          call gs_sweep_2d_packed(nc, bod, pcr, picoh, .false., coh, nocz, rr, pst, bb, 1.0_wp, .false., sums, maxes)
+          call gs_sweep_2d_packed(nc, bod, pcr, picoh, .false., coh, rr, pst, bb, 1.0_wp, .false., sums, maxes)
         end do
         best = min(best, now() - t0)
       end do

@@ -13,7 +13,7 @@ module fracas_contact_laws
   public :: law_t, law_from_input, law_friction, law_shift, law_local_problem, &
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
             law_vel_sgr_clb, law_rst_ds_clb, law_czm, cohesive_elimination, coh_size, coh_law, coh_u0t, &
-            coh_h, coh_factor, coh_released, coh_u0n
+            coh_h, coh_factor, coh_released, coh_u0n, coh_prev
 
   !> Gaps below this (m) count as closed for the laws that act only on closed
   !> contacts: far below any physical length, far above round-off of coordinates.
@@ -26,9 +26,10 @@ module fracas_contact_laws
   !> the end-of-step jumps of the previous step set); coh_h: time step; coh_factor:
   !> the step's spring factor over beta0^k (1 while it does not damage; the impulse
   !> is coh_factor (a + K u~)); coh_released: the damage energy the contact released
-  !> in the step (J per unit thickness), once the step is solved.
-  integer, parameter :: coh_size = 18, coh_law = 13, coh_u0t = 14, coh_h = 15, coh_factor = 16, coh_released = 17, &
-                        coh_u0n = 18
+  !> in the step (J per unit thickness), once the step is solved; coh_prev, coh_prev+1:
+  !> the factor and the law's answer g of the previous pass (nlgs, damage within the step).
+  integer, parameter :: coh_size = 20, coh_law = 13, coh_u0t = 14, coh_h = 15, coh_factor = 16, coh_released = 17, &
+                        coh_u0n = 18, coh_prev = 19
 
   integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
                         law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
@@ -284,6 +285,7 @@ contains
         coh(coh_u0n) = internals(3)
         coh(coh_h) = h
         coh(coh_factor) = 1.0_wp
+        coh(coh_prev) = -1.0_wp        ! no previous pass
         ! The tensile cohesive impulse also acts while the gap is open, and
         ! between bodies whose normal motion is driven.
         active = .true.

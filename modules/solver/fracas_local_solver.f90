@@ -3,8 +3,7 @@
 module fracas_local_solver
   use fracas_kinds, only: wp
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw
-  use fracas_czm, only: czm_t, czm_beta_update, czm_step_factor, czm_beta_power
-  use fracas_contact_laws, only: cohesive_elimination, coh_law, coh_u0t, coh_u0n, coh_h, coh_factor
+  use fracas_contact_laws, only: coh_factor
   implicit none
   private
   public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d_packed, gs_sweep_mesh
@@ -96,14 +95,12 @@ contains
   !>   cr(pk_size, n) one record per contact, in sweep order (only the contacts the
   !>     law leaves active): 1:2 n, 3:6 lever arms (cd t, cd n, an t, an n), 7:10 W
   !>     (tt, tn, nt, nn), 11:16 inverse_block of the W the local solver uses,
-  !>     17:18 law shift, 19 mu, 20 cohesive damage beta0 at the start of the step;
-  !>     r(2, n) total impulses, updated in place;
+  !>     17:18 law shift, 19 mu, 20 unused; r(2, n) total impulses, updated in place;
   !>   cb(2, n) the two bodies as indices in bv; icoh(n) the column of coh of a
   !>     cohesive contact (0: none), any_coh: some is. A cohesive contact solves for
   !>     its contact part r_c with W' = A W and u~free' = A (u~free + W a), then
-  !>     r = r_c + a + K u~ (coh(:,k): fracas_contact_laws, coh_size); with damage
-  !>     solved within the step (coh(coh_law,k) > 0, the law in cz) the step's
-  !>     spring factor too (cohesive_step), kept in coh(coh_factor,k);
+  !>     r = r_c + f (a + K u~) (coh(:,k): fracas_contact_laws, coh_size; f the
+  !>     step's spring factor, see cohesive_step);
   !>   bv(6, *) one record per body: v (3) and the inverse mass (3);
   !>   r(2, n), status(n) in sweep order.
   !> With check, statuses are written and the norm sums accumulated: sums(1) sum
@@ -113,14 +110,12 @@ contains
   !> check pass, every contact's local solution computed from the current state and
   !> compared with its current reaction. Sweeps without check and without cohesive
   !> contacts run a lean loop (sweep_plain, the local solver inlined).
-  subroutine gs_sweep_2d_packed(n, cb, cr, icoh, any_coh, coh, cz, r, status, bv, relax, check, sums, maxes, &
-                                evaluate_only)
+  subroutine gs_sweep_2d_packed(n, cb, cr, icoh, any_coh, coh, r, status, bv, relax, check, sums, maxes, evaluate_only)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
     real(wp), intent(in) :: cr(pk_size, n)
     logical, intent(in) :: any_coh
-    real(wp), intent(inout), contiguous :: coh(:, :)
-    type(czm_t), intent(in) :: cz(:)
+    real(wp), intent(in), contiguous :: coh(:, :)
     real(wp), intent(inout) :: r(2, n), bv(6, *)
     integer, intent(inout) :: status(n)
     real(wp), intent(in) :: relax
@@ -131,7 +126,7 @@ contains
     evaluate = .false.
     if (present(evaluate_only)) evaluate = evaluate_only
     if (check .or. any_coh) then
-      call sweep_general(n, cb, cr, icoh, coh, cz, r, status, bv, relax, check, sums, maxes, evaluate)
+      call sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes, evaluate)
     else
       sums = 0.0_wp
       maxes = 0.0_wp
@@ -197,19 +192,18 @@ contains
 
   !> Any sweep with cohesive contacts, or a check pass (statuses and LMGC90's
   !> norm sums, nothing applied).
-  subroutine sweep_general(n, cb, cr, icoh, coh, cz, r, status, bv, relax, check, sums, maxes, evaluate_only)
+  subroutine sweep_general(n, cb, cr, icoh, coh, r, status, bv, relax, check, sums, maxes, evaluate_only)
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
     real(wp), intent(in) :: cr(pk_size, n)
-    real(wp), intent(inout), contiguous :: coh(:, :)
-    type(czm_t), intent(in) :: cz(:)
+    real(wp), intent(in), contiguous :: coh(:, :)
     real(wp), intent(inout) :: r(2, n), bv(6, *)
     integer, intent(inout) :: status(n)
     real(wp), intent(in) :: relax
     logical, intent(in) :: check, evaluate_only
     real(wp), intent(out) :: sums(6), maxes(2)
     integer :: k, a, o
-    real(wp) :: n1, n2, dvx, dvy, ut, un, rt0, rn0, rt, rn, drt, drn, px, py, factor
+    real(wp) :: n1, n2, dvx, dvy, ut, un, rt0, rn0, rt, rn, drt, drn, px, py
     sums = 0.0_wp
     maxes = 0.0_wp
     do k = 1, n
@@ -220,10 +214,8 @@ contains
       ut = dvx * n2 - dvy * n1 + bv(3, a) * cr(3, k) - bv(3, o) * cr(5, k)
       un = dvx * n1 + dvy * n2 + bv(3, a) * cr(4, k) - bv(3, o) * cr(6, k)
       rt0 = r(1, k); rn0 = r(2, k)
-      call local_step(ut, un, cr(:, k), icoh(k), coh, cz, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes, &
-                      factor)
+      call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
       if (evaluate_only) cycle        ! a check pass evaluates, it does not apply
-      if (icoh(k) /= 0) coh(coh_factor, icoh(k)) = factor
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
@@ -241,16 +233,14 @@ contains
   !> One contact's update from its current relative velocity (ut, un), whatever
   !> bodies it joins: free velocity u - W r0 + shift, exact local solution (a
   !> cohesive contact j > 0 solves for its contact part with W' and adds the
-  !> cohesive impulse, see gs_sweep_2d_packed; factor: its step's spring factor over
-  !> beta0^k, 1 for other contacts), with check its status and LMGC90's norm
+  !> cohesive impulse, see gs_sweep_2d_packed), with check its status and LMGC90's norm
   !> sums, then relaxation. cr is the contact's packed record.
-  pure subroutine local_step(ut, un, cr, j, coh, cz, rt0, rn0, relax, check, rt, rn, status, sums, maxes, factor)
+  pure subroutine local_step(ut, un, cr, j, coh, rt0, rn0, relax, check, rt, rn, status, sums, maxes)
     real(wp), intent(in) :: ut, un, cr(pk_size), rt0, rn0, relax
     integer, intent(in) :: j
     real(wp), intent(in) :: coh(:, :)
-    type(czm_t), intent(in) :: cz(:)
     logical, intent(in) :: check
-    real(wp), intent(out) :: rt, rn, factor
+    real(wp), intent(out) :: rt, rn
     integer, intent(inout) :: status
     real(wp), intent(inout) :: sums(6), maxes(2)
     integer :: st
@@ -258,9 +248,8 @@ contains
     wtt = cr(7); wtn = cr(8); wnt = cr(9); wnn = cr(10)
     uft = ut - (wtt * rt0 + wtn * rn0) + cr(17)
     ufn = un - (wnt * rt0 + wnn * rn0) + cr(18)
-    factor = 1.0_wp
     if (j /= 0) then
-      call cohesive_step(uft, ufn, cr, coh(:, j), cz, rt, rn, st, factor)
+      call cohesive_step(uft, ufn, cr, coh(:, j), rt, rn, st)
     else
       call coulomb_2d_inv(uft, ufn, cr(11:16), cr(19), rt, rn, st)
     end if
@@ -292,102 +281,26 @@ contains
   end subroutine local_step
 
   !> The local problem of a cohesive contact from its free velocity (uft, ufn): the
-  !> total impulse r = r_c + f (a + K u~), the contact part r_c by the exact
-  !> Signorini–Coulomb solver on the block W' of the eliminated spring.
-  !> LMGC90's explicit update (coh(coh_law) = 0): the spring factor f = 1 (beta0^k,
-  !> the damage of the start of the step). Damage within the step (coh(coh_law) =
-  !> the law in cz): f solves f = g(f), g(f) the factor czm_step_factor gives at the
-  !> end-of-step jump that f produces: the damage beta1 the law gives at that jump
-  !> and the spring work equal to the law's energy (doc/czm.md). g(1) = 1 when the
-  !> step does not damage (one solve); otherwise g(1) < 1, g(0) >= 0 and the root is
-  !> found by the Illinois variant of regula falsi on [0, 1], from the contact's
-  !> previous factor (coh(coh_factor)). The friction mu (1 - beta0)^p stays that of
-  !> the start of the step.
-  pure subroutine cohesive_step(uft, ufn, cr, coh, cz, rt, rn, status, factor)
+  !> total impulse r = r_c + f (a + K u~), f = coh(coh_factor) the step's spring
+  !> factor over beta0^k (1 with LMGC90's explicit update; with damage within the
+  !> step, set by nlgs between NLGS solves), the contact part r_c by the exact
+  !> Signorini–Coulomb solver on the block W' = A W of the eliminated spring, A and W'
+  !> (coh(1:8)) and W'^-1 (cr(11:16)) for that factor.
+  pure subroutine cohesive_step(uft, ufn, cr, coh, rt, rn, status)
     real(wp), intent(in) :: uft, ufn, cr(pk_size), coh(:)
-    type(czm_t), intent(in) :: cz(:)
-    real(wp), intent(out) :: rt, rn, factor
+    real(wp), intent(out) :: rt, rn
     integer, intent(out) :: status
-    integer, parameter :: max_iterations = 100
-    real(wp), parameter :: tol = 1.0e-12_wp
-    real(wp) :: lo, hi, flo, fhi, f, ff, x
-    integer :: it, law, side
-    law = nint(coh(coh_law))
-    factor = 1.0_wp
-    call solve_at(1.0_wp, rt, rn, status, fhi)
-    if (law == 0) return
-    fhi = 1.0_wp - fhi                                   ! f(1) = 1 - g(1) >= 0
-    if (fhi <= tol) return
-    hi = 1.0_wp
-    lo = 0.0_wp
-    call solve_at(0.0_wp, rt, rn, status, flo)
-    flo = -flo
-    if (flo >= -tol) then                                ! g(0) = 0: broken within the step
-      factor = 0.0_wp
-      return
-    end if
-    ! Start from the contact's previous factor when it lies inside the bracket.
-    x = coh(coh_factor)
-    if (.not. (x > lo .and. x < hi)) x = (lo * fhi - hi * flo) / (fhi - flo)
-    side = 0
-    do it = 1, max_iterations
-      call solve_at(x, rt, rn, status, ff)
-      f = x - ff
-      factor = x
-      if (abs(f) <= tol .or. hi - lo <= tol) exit
-      if (f > 0.0_wp) then
-        hi = x; fhi = f
-        if (side == 1) flo = 0.5_wp * flo
-        side = 1
-      else
-        lo = x; flo = f
-        if (side == -1) fhi = 0.5_wp * fhi
-        side = -1
-      end if
-      x = (lo * fhi - hi * flo) / (fhi - flo)
-    end do
-
-  contains
-
-    !> The contact's impulse with spring factor x (over beta0^k), and the factor g
-    !> the law gives for the end-of-step jump it produces (over beta0^k).
-    pure subroutine solve_at(x, rt, rn, status, g)
-      real(wp), intent(in) :: x
-      real(wp), intent(out) :: rt, rn, g
-      integer, intent(out) :: status
-      real(wp) :: amat(4), wprime(4), wi(6), kt, kn, at, xt, xn, vt, vn, rct, rcn, ut, un, u1(2), beta0, beta1
-      logical :: solvable
-      kt = x * coh(11); kn = x * coh(12); at = x * coh(9)
-      if (x == 1.0_wp) then
-        amat = coh(1:4); wprime = coh(5:8); wi = cr(11:16)
-        solvable = .true.
-      else
-        call cohesive_elimination(cr(7:10), kt, kn, amat, wprime, solvable)
-        if (solvable) wi = inverse_block(wprime(1), wprime(2), wprime(3), wprime(4), cr(19))
-      end if
-      xt = uft + cr(7) * at
-      xn = ufn + cr(9) * at
-      vt = amat(1) * xt + amat(2) * xn
-      vn = amat(3) * xt + amat(4) * xn
-      if (solvable .or. x == 1.0_wp) then
-        call coulomb_2d_inv(vt, vn, wi, cr(19), rct, rcn, status)
-      else
-        rct = 0.0_wp; rcn = 0.0_wp
-        status = st_noctc
-      end if
-      ut = vt + wprime(1) * rct + wprime(2) * rcn     ! u~ at the end of the step
-      un = vn + wprime(3) * rct + wprime(4) * rcn
-      rt = rct + at + kt * ut
-      rn = rcn + kn * un
-      g = 1.0_wp
-      if (law == 0) return
-      associate (p => cz(law), h => coh(coh_h))
-        u1 = [coh(coh_u0t) + h * ut, h * un]          ! the law's jump at the end of the step
-        beta0 = cr(20)
-        beta1 = czm_beta_update(p, beta0, u1(1), u1(2), h)
-        g = czm_step_factor(p, beta0, beta1, [coh(coh_u0t), coh(coh_u0n)], u1, h) / beta0**czm_beta_power(p)
-      end associate
-    end subroutine solve_at
+    real(wp) :: kt, kn, at, xt, xn, vt, vn, rct, rcn, ut, un
+    kt = coh(coh_factor) * coh(11); kn = coh(coh_factor) * coh(12); at = coh(coh_factor) * coh(9)
+    xt = uft + cr(7) * at
+    xn = ufn + cr(9) * at
+    vt = coh(1) * xt + coh(2) * xn
+    vn = coh(3) * xt + coh(4) * xn
+    call coulomb_2d_inv(vt, vn, cr(11:16), cr(19), rct, rcn, status)
+    ut = vt + coh(5) * rct + coh(6) * rcn     ! u~ at the end of the step
+    un = vn + coh(7) * rct + coh(8) * rcn
+    rt = rct + at + kt * ut
+    rn = rcn + kn * un
   end subroutine cohesive_step
 
   !> One Gauss–Seidel sweep over contacts with a meshed side (sweep order), in
@@ -403,20 +316,19 @@ contains
   !>     of its body, starting in mv at mfirst(s, k)), so an impulse change dr
   !>     moves mv by G dr.
   !> Statuses and norm sums as gs_sweep_2d_packed: a check pass applies nothing.
-  subroutine gs_sweep_mesh(n, cr, side, gm, mfirst, slot, wt, icoh, coh, cz, r, status, bv, mv, gmat, relax, check, &
+  subroutine gs_sweep_mesh(n, cr, side, gm, mfirst, slot, wt, icoh, coh, r, status, bv, mv, gmat, relax, check, &
                            sums, maxes, evaluate_only)
     integer, intent(in) :: n
     real(wp), intent(in) :: cr(pk_size, n), wt(4, n), gmat(*)
     integer, intent(in) :: side(4, n), gm(2, n), mfirst(2, n), slot(4, n), icoh(n)
-    real(wp), intent(inout), contiguous :: coh(:, :)
-    type(czm_t), intent(in) :: cz(:)
+    real(wp), intent(in), contiguous :: coh(:, :)
     real(wp), intent(inout) :: r(2, n), bv(6, *), mv(*)
     integer, intent(inout) :: status(n)
     real(wp), intent(in) :: relax
     logical, intent(in) :: check, evaluate_only
     real(wp), intent(out) :: sums(6), maxes(2)
     integer :: k, s, i, a, m, g0, v0
-    real(wp) :: n1, n2, vx, vy, rot, ut, un, rt0, rn0, rt, rn, drt, drn, px, py, sgn, factor
+    real(wp) :: n1, n2, vx, vy, rot, ut, un, rt0, rn0, rt, rn, drt, drn, px, py, sgn
     sums = 0.0_wp
     maxes = 0.0_wp
     do k = 1, n
@@ -452,10 +364,8 @@ contains
         un = un + vx * n1 + vy * n2
       end if
       rt0 = r(1, k); rn0 = r(2, k)
-      call local_step(ut, un, cr(:, k), icoh(k), coh, cz, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes, &
-                      factor)
+      call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
       if (evaluate_only) cycle        ! a check pass evaluates, it does not apply
-      if (icoh(k) /= 0) coh(coh_factor, icoh(k)) = factor
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle

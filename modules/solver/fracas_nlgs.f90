@@ -18,8 +18,10 @@ module fracas_nlgs
                           mailx_contact_dofs, &
                           mailx_velocity_from_impulses
   use fracas_contacts, only: contacts_t
-  use fracas_contact_laws, only: law_t, law_local_problem, law_czm, coh_size, coh_law, coh_factor, coh_released
-  use fracas_czm, only: czm_t, czm_beta_update, czm_stored_energy, czm_step_dissipation
+  use fracas_contact_laws, only: law_t, law_local_problem, law_czm, cohesive_elimination, coh_size, coh_law, &
+                                 coh_factor, coh_released, coh_u0t, coh_u0n, coh_h, coh_prev
+  use fracas_czm, only: czm_t, czm_beta_update, czm_stored_energy, czm_step_dissipation, czm_step_factor, &
+                        czm_beta_power
   use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
   use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
   implicit none
@@ -50,6 +52,7 @@ module fracas_nlgs
     real(wp) :: residual_onepq = 0.0_wp  !< ||F|| / (1 + ||q||)
     integer :: nactive = 0               !< contacts with a non-zero reaction
     integer(i8) :: updates = 0           !< local solves done: swept contacts of every sweep and check pass
+    integer :: damage_passes = 1         !< NLGS solves of the step (damage within the step: more than 1 while it settles)
     real(wp) :: velocity_seconds = 0.0_wp !< meshes: wall time of the final solve of their velocities
   end type nlgs_report_t
 
@@ -428,11 +431,92 @@ contains
     end do
   end subroutine clear_active
 
-  !> Solve the step's contact problem. On entry b%v = vfree (rigid), m%vfree
-  !> (meshes), and c%r holds the warm start; on exit the velocities are
-  !> vfree + M^-1 H^T r (rigid) and vfree + A_ff^-1 H^T r (meshes), and c%u the
-  !> final local velocities.
+  !> Solve the step's contact problem (nlgs_solve_once). With damage within the
+  !> step, the spring factors of the cohesive contacts are then made consistent with
+  !> the jumps the solve produced (damage_factors) and the problem is solved again
+  !> from there (warm start), until no factor moves by more than factor_tolerance: a
+  !> fixed point iteration from the start-of-step damage (each pass an NLGS solve with
+  !> the factors frozen, a linear problem Gauss–Seidel converges on; solving the
+  !> nonmonotone softening law inside the sweep made Gauss–Seidel cycle). The report
+  !> adds up the sweeps of all passes; passes: their number.
   subroutine nlgs_solve(solver, c, b, m, report)
+    type(nlgs_t), intent(inout) :: solver
+    type(contacts_t), intent(inout) :: c
+    type(rbdy2_t), intent(inout) :: b
+    type(mailx_t), intent(inout) :: m
+    type(nlgs_report_t), intent(out) :: report
+    integer, parameter :: max_passes = 100
+    type(nlgs_report_t) :: once
+    integer :: pass
+    logical :: changed
+    call nlgs_solve_once(solver, c, b, m, report)
+    report%damage_passes = 1
+    if (.not. (solver%s%damage_in_step .and. c%with_cohesion)) return
+    do pass = 2, max_passes + 1
+      call damage_factors(solver, c, changed)
+      if (.not. changed) return
+      if (pass > max_passes) exit
+      b%v = b%vfree
+      call nlgs_solve_once(solver, c, b, m, once)
+      once%sweeps = once%sweeps + report%sweeps
+      once%updates = once%updates + report%updates
+      once%velocity_seconds = once%velocity_seconds + report%velocity_seconds
+      once%converged = once%converged .and. report%converged
+      report = once
+      report%damage_passes = pass
+    end do
+    report%converged = .false.      ! the damage did not settle within max_passes
+  end subroutine nlgs_solve
+
+  !> The spring factor of each cohesive contact with damage within the step, from the
+  !> end-of-step jump of the last solve: g = czm_step_factor at the damage the law
+  !> gives there, over beta0^k (1 while the step does not damage); the next factor is
+  !> the secant root of f - g(f) through this pass and the previous one where that
+  !> line has a root in [0, 1] and slopes up, else g (a fixed point pass); A, W' and
+  !> W'^-1 for it. changed: some factor moved by more than factor_tolerance (relative).
+  subroutine damage_factors(solver, c, changed)
+    type(nlgs_t), intent(in) :: solver
+    type(contacts_t), intent(inout) :: c
+    logical, intent(out) :: changed
+    real(wp), parameter :: factor_tolerance = 1.0e-6_wp
+    integer :: k, law
+    real(wp) :: u1(2), beta0, beta1, f, g, r_now, r_prev, slope
+    logical :: solvable
+    changed = .false.
+    do k = 1, c%n
+      if (.not. c%cohesive(k)) cycle
+      law = nint(c%coh(coh_law, k))
+      if (law == 0) cycle
+      associate (p => solver%cz(law), h => c%coh(coh_h, k), old => c%coh(coh_factor, k))
+        beta0 = c%internals(4, k)
+        u1 = [c%coh(coh_u0t, k) + h * c%u(1, k), h * (c%u(2, k) + c%shift(2, k))]
+        beta1 = czm_beta_update(p, beta0, u1(1), u1(2), h)
+        g = czm_step_factor(p, beta0, beta1, [c%coh(coh_u0t, k), c%coh(coh_u0n, k)], u1, h) / &
+            beta0**czm_beta_power(p)
+        if (abs(g - old) <= factor_tolerance * max(g, old)) cycle
+        f = g
+        r_now = old - g
+        if (c%coh(coh_prev, k) >= 0.0_wp .and. c%coh(coh_prev, k) /= old) then
+          r_prev = c%coh(coh_prev, k) - c%coh(coh_prev + 1, k)
+          slope = (r_now - r_prev) / (old - c%coh(coh_prev, k))
+          if (slope > 0.0_wp) f = min(1.0_wp, max(0.0_wp, old - r_now / slope))
+        end if
+        c%coh(coh_prev:coh_prev + 1, k) = [old, g]
+        changed = .true.
+        old = f
+        call cohesive_elimination(c%w(:, k), f * c%coh(11, k), f * c%coh(12, k), c%coh(1:4, k), c%coh(5:8, k), &
+                                  solvable)
+        c%wi(:, k) = 0.0_wp
+        if (solvable) c%wi(:, k) = inverse_block(c%coh(5, k), c%coh(6, k), c%coh(7, k), c%coh(8, k), c%mu(k))
+      end associate
+    end do
+  end subroutine damage_factors
+
+  !> Solve the step's contact problem with the cohesive spring factors frozen. On
+  !> entry b%v = vfree (rigid), m%vfree (meshes), and c%r holds the warm start; on
+  !> exit the velocities are vfree + M^-1 H^T r (rigid) and vfree + A_ff^-1 H^T r
+  !> (meshes), and c%u the final local velocities.
+  subroutine nlgs_solve_once(solver, c, b, m, report)
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
     type(rbdy2_t), intent(inout) :: b
@@ -700,10 +784,7 @@ contains
       rec(19) = c%mu(k)
       rec(20) = 0.0_wp
       icoh = 0
-      if (c%cohesive(k)) then
-        icoh = k
-        rec(20) = c%internals(4, k)
-      end if
+      if (c%cohesive(k)) icoh = k
     end subroutine record
 
     !> Impulses and statuses back to the contact store.
@@ -827,12 +908,12 @@ contains
       integer :: np
       np = solver%np
       report%updates = report%updates + np + solver%ng
-      call gs_sweep_2d_packed(np, solver%pb, solver%pc, solver%pcoh, solver%any_coh, c%coh, solver%cz, solver%pr, &
+      call gs_sweep_2d_packed(np, solver%pb, solver%pc, solver%pcoh, solver%any_coh, c%coh, solver%pr, &
                               solver%pst, solver%bv, &
                               solver%s%relax, check, s6, maxes, evaluate_only)
       if (solver%ng > 0) then
         call gs_sweep_mesh(solver%ng, solver%gc, solver%gside, solver%ggm, solver%gfirst, solver%gslot, solver%gwt, &
-                           solver%gcoh, c%coh, solver%cz, solver%gr, solver%gst, solver%bv, solver%mv, solver%gmat, &
+                           solver%gcoh, c%coh, solver%gr, solver%gst, solver%bv, solver%mv, solver%gmat, &
                            solver%s%relax, check, g6, gmax, evaluate_only)
         s6 = s6 + g6
         maxes = max(maxes, gmax)
@@ -849,5 +930,5 @@ contains
       rep%maxm_dvr = nrm%maxm_dvr; rep%mean_dvor = nrm%mean_dvor
       diverged = .not. nrm%finite
     end subroutine norms
-  end subroutine nlgs_solve
+  end subroutine nlgs_solve_once
 end module fracas_nlgs
