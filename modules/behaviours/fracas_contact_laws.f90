@@ -13,7 +13,7 @@ module fracas_contact_laws
   public :: law_t, law_from_input, law_friction, law_shift, law_local_problem, &
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
             law_vel_sgr_clb, law_rst_ds_clb, law_czm, cohesive_elimination, coh_size, coh_law, coh_u0t, &
-            coh_h, coh_factor, coh_released, coh_u0n, coh_prev
+            coh_h, coh_factor, coh_released, coh_u0n, coh_prev, coh_uend
 
   !> Gaps below this (m) count as closed for the laws that act only on closed
   !> contacts: far below any physical length, far above round-off of coordinates.
@@ -27,9 +27,10 @@ module fracas_contact_laws
   !> the step's spring factor over beta0^k (1 while it does not damage; the impulse
   !> is coh_factor (a + K u~)); coh_released: the damage energy the contact released
   !> in the step (J per unit thickness), once the step is solved; coh_prev, coh_prev+1:
-  !> the factor and the law's answer g of the previous pass (nlgs, damage within the step).
-  integer, parameter :: coh_size = 20, coh_law = 13, coh_u0t = 14, coh_h = 15, coh_factor = 16, coh_released = 17, &
-                        coh_u0n = 18, coh_prev = 19
+  !> the factor and the law's answer g of the previous pass (nlgs, damage within the step);
+  !> coh_uend, coh_uend+1: u~ at the end of the step of the last check pass's local solution.
+  integer, parameter :: coh_size = 22, coh_law = 13, coh_u0t = 14, coh_h = 15, coh_factor = 16, coh_released = 17, &
+                        coh_u0n = 18, coh_prev = 19, coh_uend = 21
 
   integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
                         law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
@@ -251,15 +252,17 @@ contains
   !> contact and its Delassus block w (tt, tn, nt, nn);
   !> out: the velocity shift, friction mu, whether the contact takes a reaction
   !> this step, and for a cohesive contact (beta > 0) the cohesive impulse
-  !> r_coh = a + K u~ at the start damage beta0, eliminated locally (coh, see
-  !> coh_size; coh_law is left 0); weff is the block the local solver solves with
+  !> r_coh = a + K u~ at the start damage beta0 (midpoint: the traction at the mean
+  !> of the start and end jumps, else at the end jumps as LMGC90), eliminated locally
+  !> (coh, see coh_size; coh_law is left 0); weff is the block the local solver solves with
   !> (W, or W' with cohesion). solvable = .false. for a zero or singular block
   !> (both sides driven): no contact reaction then, while the cohesive impulse
   !> still follows from the law.
-  pure subroutine law_local_problem(law, gap, h, u_begin, status_begin, internals, length, w, &
+  pure subroutine law_local_problem(law, gap, h, u_begin, status_begin, internals, length, w, midpoint, &
                                     shift, mu, active, cohesive, coh, weff, solvable)
     type(law_t), intent(in) :: law
     real(wp), intent(in) :: gap, h, u_begin(2), internals(:), length, w(4)
+    logical, intent(in) :: midpoint
     integer, intent(in) :: status_begin
     real(wp), intent(out) :: shift(2), mu, coh(coh_size), weff(4)
     logical, intent(out) :: active, cohesive, solvable
@@ -276,9 +279,18 @@ contains
       if (beta > 0.0_wp) then
         cohesive = .true.
         e = beta**czm_beta_power(law%czm) * length
-        kt = -h**2 * e * law%czm%ct
-        kn = -h**2 * e * law%czm%cn
-        coh(9:10) = [-h * e * law%czm%ct * internals(2), 0.0_wp]  ! from the tangential jump at the start
+        if (midpoint) then
+          ! the traction at the mean of the start jumps (internals) and the end ones
+          ! (u_t + h u~_t, h u~_n): damage within the step (czm_step_factor)
+          kt = -0.5_wp * h**2 * e * law%czm%ct
+          kn = -0.5_wp * h**2 * e * law%czm%cn
+          coh(9:10) = [-h * e * law%czm%ct * internals(2), -0.5_wp * h * e * law%czm%cn * internals(3)]
+        else
+          ! LMGC90: the traction at the end jumps
+          kt = -h**2 * e * law%czm%ct
+          kn = -h**2 * e * law%czm%cn
+          coh(9:10) = [-h * e * law%czm%ct * internals(2), 0.0_wp]  ! from the tangential jump at the start
+        end if
         coh(11:12) = [kt, kn]
         call cohesive_elimination(w, kt, kn, coh(1:4), coh(5:8), solvable)
         coh(coh_u0t) = internals(2)

@@ -194,13 +194,15 @@ contains
     if (p%family == czm_mac) e = e + p%visco * (beta0 - beta1)**2 / h
   end function czm_step_dissipation
 
-  !> The factor f of the cohesive traction f C u1 (u1 the end-of-step jump) that a
-  !> step applies with damage consistent within the step (doc/czm.md): beta0^k while
-  !> the step does not damage (the implicit spring of LMGC90), else the secant value
-  !> whose work over the step's jump u1 - u0 is the law's own energy along it,
-  !>   f u1.C(u1 - u0) = psi(beta1, u1) - psi(beta0, u0) + dissipation,
-  !> so that a crack costs its fracture energy whatever its opening per step. Kept in
-  !> [0, beta0^k]; beta1^k where the step does not open (u1.C(u1 - u0) <= 0).
+  !> The factor f of the cohesive traction f C (u0 + u1)/2 (u0, u1 the jumps at the
+  !> start and the end of the step) that a step applies with damage consistent within
+  !> the step (doc/czm.md): beta0^k while the step does not damage (the midpoint rule:
+  !> the springs' work is the change of their energy), else the discrete-gradient value
+  !> whose work over the step's jump is the law's own energy along it,
+  !>   f (u1.C u1 - u0.C u0)/2 = psi(beta1, u1) - psi(beta0, u0) + dissipation,
+  !> so that a crack costs its fracture energy whatever its opening per step; both
+  !> agree where damage starts, so f is continuous in u1. Kept in [0, beta0^k];
+  !> beta1^k where the step does not stretch the springs (u1.C u1 <= u0.C u0).
   pure real(wp) function czm_step_factor(p, beta0, beta1, u0, u1, h) result(f)
     type(czm_t), intent(in) :: p
     real(wp), intent(in) :: beta0, beta1, u0(2), u1(2), h
@@ -209,7 +211,7 @@ contains
     k = czm_beta_power(p)
     f = beta0**k
     if (beta1 >= beta0) return
-    den = p%ct * u1(1) * (u1(1) - u0(1)) + p%cn * u1(2) * (u1(2) - u0(2))
+    den = 0.5_wp * (p%ct * (u1(1)**2 - u0(1)**2) + p%cn * (u1(2)**2 - u0(2)**2))
     if (den <= 0.0_wp) then
       f = beta1**k
       return

@@ -3,7 +3,7 @@
 module fracas_local_solver
   use fracas_kinds, only: wp
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw
-  use fracas_contact_laws, only: coh_factor
+  use fracas_contact_laws, only: coh_factor, coh_uend
   implicit none
   private
   public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d_packed, gs_sweep_mesh
@@ -115,7 +115,7 @@ contains
     integer, intent(in) :: cb(2, n), icoh(n)
     real(wp), intent(in) :: cr(pk_size, n)
     logical, intent(in) :: any_coh
-    real(wp), intent(in), contiguous :: coh(:, :)
+    real(wp), intent(inout), contiguous :: coh(:, :)   !< check passes keep u~ of cohesive contacts (coh_uend)
     real(wp), intent(inout) :: r(2, n), bv(6, *)
     integer, intent(inout) :: status(n)
     real(wp), intent(in) :: relax
@@ -196,14 +196,14 @@ contains
     integer, intent(in) :: n
     integer, intent(in) :: cb(2, n), icoh(n)
     real(wp), intent(in) :: cr(pk_size, n)
-    real(wp), intent(in), contiguous :: coh(:, :)
+    real(wp), intent(inout), contiguous :: coh(:, :)
     real(wp), intent(inout) :: r(2, n), bv(6, *)
     integer, intent(inout) :: status(n)
     real(wp), intent(in) :: relax
     logical, intent(in) :: check, evaluate_only
     real(wp), intent(out) :: sums(6), maxes(2)
     integer :: k, a, o
-    real(wp) :: n1, n2, dvx, dvy, ut, un, rt0, rn0, rt, rn, drt, drn, px, py
+    real(wp) :: n1, n2, dvx, dvy, ut, un, rt0, rn0, rt, rn, drt, drn, px, py, uend(2)
     sums = 0.0_wp
     maxes = 0.0_wp
     do k = 1, n
@@ -214,8 +214,11 @@ contains
       ut = dvx * n2 - dvy * n1 + bv(3, a) * cr(3, k) - bv(3, o) * cr(5, k)
       un = dvx * n1 + dvy * n2 + bv(3, a) * cr(4, k) - bv(3, o) * cr(6, k)
       rt0 = r(1, k); rn0 = r(2, k)
-      call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
-      if (evaluate_only) cycle        ! a check pass evaluates, it does not apply
+      call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes, uend)
+      if (evaluate_only) then         ! a check pass evaluates, it does not apply
+        if (icoh(k) /= 0) coh(coh_uend:coh_uend + 1, icoh(k)) = uend
+        cycle
+      end if
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
@@ -233,23 +236,25 @@ contains
   !> One contact's update from its current relative velocity (ut, un), whatever
   !> bodies it joins: free velocity u - W r0 + shift, exact local solution (a
   !> cohesive contact j > 0 solves for its contact part with W' and adds the
-  !> cohesive impulse, see gs_sweep_2d_packed), with check its status and LMGC90's norm
-  !> sums, then relaxation. cr is the contact's packed record.
-  pure subroutine local_step(ut, un, cr, j, coh, rt0, rn0, relax, check, rt, rn, status, sums, maxes)
+  !> cohesive impulse, see gs_sweep_2d_packed; uend: its u~ at the end of the step),
+  !> with check its status and LMGC90's norm sums, then relaxation. cr is the
+  !> contact's packed record.
+  pure subroutine local_step(ut, un, cr, j, coh, rt0, rn0, relax, check, rt, rn, status, sums, maxes, uend)
     real(wp), intent(in) :: ut, un, cr(pk_size), rt0, rn0, relax
     integer, intent(in) :: j
     real(wp), intent(in) :: coh(:, :)
     logical, intent(in) :: check
-    real(wp), intent(out) :: rt, rn
+    real(wp), intent(out) :: rt, rn, uend(2)
     integer, intent(inout) :: status
     real(wp), intent(inout) :: sums(6), maxes(2)
     integer :: st
     real(wp) :: wtt, wtn, wnt, wnn, uft, ufn, dut, dun, du2, rbt, rbn, rb2
     wtt = cr(7); wtn = cr(8); wnt = cr(9); wnn = cr(10)
+    uend = 0.0_wp
     uft = ut - (wtt * rt0 + wtn * rn0) + cr(17)
     ufn = un - (wnt * rt0 + wnn * rn0) + cr(18)
     if (j /= 0) then
-      call cohesive_step(uft, ufn, cr, coh(:, j), rt, rn, st)
+      call cohesive_step(uft, ufn, cr, coh(:, j), rt, rn, st, uend(1), uend(2))
     else
       call coulomb_2d_inv(uft, ufn, cr(11:16), cr(19), rt, rn, st)
     end if
@@ -286,21 +291,22 @@ contains
   !> step, set by nlgs between NLGS solves), the contact part r_c by the exact
   !> Signorini–Coulomb solver on the block W' = A W of the eliminated spring, A and W'
   !> (coh(1:8)) and W'^-1 (cr(11:16)) for that factor.
-  pure subroutine cohesive_step(uft, ufn, cr, coh, rt, rn, status)
+  pure subroutine cohesive_step(uft, ufn, cr, coh, rt, rn, status, ut, un)
     real(wp), intent(in) :: uft, ufn, cr(pk_size), coh(:)
-    real(wp), intent(out) :: rt, rn
+    real(wp), intent(out) :: rt, rn, ut, un
     integer, intent(out) :: status
-    real(wp) :: kt, kn, at, xt, xn, vt, vn, rct, rcn, ut, un
-    kt = coh(coh_factor) * coh(11); kn = coh(coh_factor) * coh(12); at = coh(coh_factor) * coh(9)
-    xt = uft + cr(7) * at
-    xn = ufn + cr(9) * at
+    real(wp) :: kt, kn, at, an, xt, xn, vt, vn, rct, rcn
+    kt = coh(coh_factor) * coh(11); kn = coh(coh_factor) * coh(12)
+    at = coh(coh_factor) * coh(9); an = coh(coh_factor) * coh(10)
+    xt = uft + cr(7) * at + cr(8) * an
+    xn = ufn + cr(9) * at + cr(10) * an
     vt = coh(1) * xt + coh(2) * xn
     vn = coh(3) * xt + coh(4) * xn
     call coulomb_2d_inv(vt, vn, cr(11:16), cr(19), rct, rcn, status)
     ut = vt + coh(5) * rct + coh(6) * rcn     ! u~ at the end of the step
     un = vn + coh(7) * rct + coh(8) * rcn
     rt = rct + at + kt * ut
-    rn = rcn + kn * un
+    rn = rcn + an + kn * un
   end subroutine cohesive_step
 
   !> One Gauss–Seidel sweep over contacts with a meshed side (sweep order), in
@@ -321,14 +327,14 @@ contains
     integer, intent(in) :: n
     real(wp), intent(in) :: cr(pk_size, n), wt(4, n), gmat(*)
     integer, intent(in) :: side(4, n), gm(2, n), mfirst(2, n), slot(4, n), icoh(n)
-    real(wp), intent(in), contiguous :: coh(:, :)
+    real(wp), intent(inout), contiguous :: coh(:, :)
     real(wp), intent(inout) :: r(2, n), bv(6, *), mv(*)
     integer, intent(inout) :: status(n)
     real(wp), intent(in) :: relax
     logical, intent(in) :: check, evaluate_only
     real(wp), intent(out) :: sums(6), maxes(2)
     integer :: k, s, i, a, m, g0, v0
-    real(wp) :: n1, n2, vx, vy, rot, ut, un, rt0, rn0, rt, rn, drt, drn, px, py, sgn
+    real(wp) :: n1, n2, vx, vy, rot, ut, un, rt0, rn0, rt, rn, drt, drn, px, py, sgn, uend(2)
     sums = 0.0_wp
     maxes = 0.0_wp
     do k = 1, n
@@ -364,8 +370,11 @@ contains
         un = un + vx * n1 + vy * n2
       end if
       rt0 = r(1, k); rn0 = r(2, k)
-      call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes)
-      if (evaluate_only) cycle        ! a check pass evaluates, it does not apply
+      call local_step(ut, un, cr(:, k), icoh(k), coh, rt0, rn0, relax, check, rt, rn, status(k), sums, maxes, uend)
+      if (evaluate_only) then         ! a check pass evaluates, it does not apply
+        if (icoh(k) /= 0) coh(coh_uend:coh_uend + 1, icoh(k)) = uend
+        cycle
+      end if
       r(1, k) = rt; r(2, k) = rn
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle

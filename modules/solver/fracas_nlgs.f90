@@ -19,7 +19,7 @@ module fracas_nlgs
                           mailx_velocity_from_impulses
   use fracas_contacts, only: contacts_t
   use fracas_contact_laws, only: law_t, law_local_problem, law_czm, cohesive_elimination, coh_size, coh_law, &
-                                 coh_factor, coh_released, coh_u0t, coh_u0n, coh_h, coh_prev
+                                 coh_factor, coh_released, coh_u0t, coh_u0n, coh_h, coh_prev, coh_uend
   use fracas_czm, only: czm_t, czm_beta_update, czm_stored_energy, czm_step_dissipation, czm_step_factor, &
                         czm_beta_power
   use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
@@ -237,7 +237,8 @@ contains
       c%u_begin(:, k) = contact_velocity(c, k, b%vbegin, m%vbegin)
       if (c%with_cohesion) internals = c%internals(:, k)
       call law_local_problem(laws(c%law(k)), c%gap(k), h, c%u_begin(:, k), c%status_begin(k), internals, &
-                             c%length(k), c%w(:, k), c%shift(:, k), c%mu(k), active, cohesive, coh, weff, solvable)
+                             c%length(k), c%w(:, k), solver%s%damage_in_step, c%shift(:, k), c%mu(k), active, &
+                             cohesive, coh, weff, solvable)
       c%active(k) = active
       c%cohesive(k) = cohesive
       if (cohesive) then
@@ -432,13 +433,13 @@ contains
   end subroutine clear_active
 
   !> Solve the step's contact problem (nlgs_solve_once). With damage within the
-  !> step, the spring factors of the cohesive contacts are then made consistent with
-  !> the jumps the solve produced (damage_factors) and the problem is solved again
-  !> from there (warm start), until no factor moves by more than factor_tolerance: a
-  !> fixed point iteration from the start-of-step damage (each pass an NLGS solve with
-  !> the factors frozen, a linear problem Gauss–Seidel converges on; solving the
-  !> nonmonotone softening law inside the sweep made Gauss–Seidel cycle). The report
-  !> adds up the sweeps of all passes; passes: their number.
+  !> step, the spring factors of the cohesive contacts follow the jumps after each
+  !> check pass (damage_factors: the NLGS converges only once they settle); should
+  !> the final jumps still move a factor, the problem is solved again from there
+  !> (warm start), up to max_passes times. Solving the nonmonotone softening law inside
+  !> each local update instead made Gauss–Seidel cycle; a factor frozen over a block of
+  !> sweeps keeps each block a linear problem. The report adds up the sweeps of all
+  !> passes; damage_passes: their number.
   subroutine nlgs_solve(solver, c, b, m, report)
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
@@ -453,7 +454,7 @@ contains
     report%damage_passes = 1
     if (.not. (solver%s%damage_in_step .and. c%with_cohesion)) return
     do pass = 2, max_passes + 1
-      call damage_factors(solver, c, changed)
+      call damage_factors(solver, c, c%u(:, 1:c%n) + c%shift(:, 1:c%n), changed)
       if (.not. changed) return
       if (pass > max_passes) exit
       b%v = b%vfree
@@ -469,16 +470,17 @@ contains
   end subroutine nlgs_solve
 
   !> The spring factor of each cohesive contact with damage within the step, from the
-  !> end-of-step jump of the last solve: g = czm_step_factor at the damage the law
+  !> end-of-step jump u~ gives: g = czm_step_factor at the damage the law
   !> gives there, over beta0^k (1 while the step does not damage); the next factor is
   !> the secant root of f - g(f) through this pass and the previous one where that
   !> line has a root in [0, 1] and slopes up, else g (a fixed point pass); A, W' and
-  !> W'^-1 for it. changed: some factor moved by more than factor_tolerance (relative).
-  subroutine damage_factors(solver, c, changed)
+  !> W'^-1 for it. changed: some factor moved by more than the NLGS tolerance
+  !> (relative: the cohesive impulse is proportional to the factor).
+  subroutine damage_factors(solver, c, utilde, changed)
     type(nlgs_t), intent(in) :: solver
     type(contacts_t), intent(inout) :: c
+    real(wp), intent(in) :: utilde(:, :)     !< (2,n) u + shift at the end of the step
     logical, intent(out) :: changed
-    real(wp), parameter :: factor_tolerance = 1.0e-6_wp
     integer :: k, law
     real(wp) :: u1(2), beta0, beta1, f, g, r_now, r_prev, slope
     logical :: solvable
@@ -489,11 +491,11 @@ contains
       if (law == 0) cycle
       associate (p => solver%cz(law), h => c%coh(coh_h, k), old => c%coh(coh_factor, k))
         beta0 = c%internals(4, k)
-        u1 = [c%coh(coh_u0t, k) + h * c%u(1, k), h * (c%u(2, k) + c%shift(2, k))]
+        u1 = [c%coh(coh_u0t, k) + h * utilde(1, k), h * utilde(2, k)]
         beta1 = czm_beta_update(p, beta0, u1(1), u1(2), h)
         g = czm_step_factor(p, beta0, beta1, [c%coh(coh_u0t, k), c%coh(coh_u0n, k)], u1, h) / &
             beta0**czm_beta_power(p)
-        if (abs(g - old) <= factor_tolerance * max(g, old)) cycle
+        if (abs(g - old) <= solver%s%tol * max(g, old)) cycle
         f = g
         r_now = old - g
         if (c%coh(coh_prev, k) >= 0.0_wp .and. c%coh(coh_prev, k) /= old) then
@@ -592,6 +594,7 @@ contains
           end do
         end if
         call norms(report)
+        if (solver%s%damage_in_step .and. c%with_cohesion .and. .not. diverged) call settle_damage()
         if (report%converged .or. diverged) exit blocks   ! NaN/Inf: the caller's state check names it
       end do blocks
       call unpack_contacts()
@@ -624,6 +627,20 @@ contains
     report%residual_onepq = sqrt(fsum) / (1.0_wp + sqrt(qsum))
 
   contains
+
+    !> Damage within the step: the spring factors from the check pass's u~; while
+    !> one moves the NLGS has not converged (the records are packed again).
+    subroutine settle_damage()
+      logical :: changed
+      if (.not. solver%s%check_pass) return     ! u~ comes from the check pass
+      call damage_factors(solver, c, c%coh(coh_uend:coh_uend + 1, 1:n), changed)
+      if (.not. changed) return
+      report%converged = .false.
+      if (solver%s%order /= 'shuffled') then
+        call unpack_contacts()
+        call pack_contacts()
+      end if
+    end subroutine settle_damage
 
     !> Add impulse (dt, dn) of contact k to both bodies' velocities.
     subroutine inject(k, dt, dn)
