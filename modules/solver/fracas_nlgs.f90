@@ -40,7 +40,7 @@ module fracas_nlgs
     integer :: seed = 1
     !> Cohesive damage solved with the contacts within each step (else LMGC90's
     !> explicit update after the step, from the start-of-step damage).
-    logical :: damage_in_step = .true.
+    logical :: damage_in_step = .false.
   end type nlgs_settings_t
 
   type :: nlgs_report_t
