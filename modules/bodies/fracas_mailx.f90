@@ -33,7 +33,7 @@ module fracas_mailx
   public :: mailx_t, mailx_build, mailx_restore_state, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
-            mailx_dense_max, mailx_gauss_values
+            mailx_dense_max, mailx_gauss_values, mailx_radius
 
   !> Bodies with at most this many dofs keep a dense inverse of A_ff (exploded
   !> elements, small meshes: the inverse is the contact compliance); larger
@@ -322,6 +322,17 @@ contains
     end do
   end function model_index
 
+
+  !> Size of body b as a rigid body's radius: half the diagonal of the box
+  !> around its reference nodes (the state guard's scale for what double
+  !> precision resolves at the body).
+  pure real(wp) function mailx_radius(m, b) result(r)
+    type(mailx_t), intent(in) :: m
+    integer, intent(in) :: b
+    associate (x => m%ref(:, m%node_first(b):m%node_first(b + 1) - 1))
+      r = 0.5_wp * norm2(maxval(x, dim=2) - minval(x, dim=2))
+    end associate
+  end function mailx_radius
 
   !> Degrees of freedom of body b: 2 per node (x, y), in node order.
   pure integer function body_ndof(m, b)
