@@ -21,3 +21,14 @@ long fracas_list_dir(const char *path, char *buf, long buflen)
     closedir(dir);
     return need;
 }
+
+/* Size in bytes of the file PATH on disk (what reached the file system), or -1
+ * if it cannot be found (for fracas_files: close_written, check_written). */
+#include <sys/stat.h>
+
+long long fracas_file_size(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) return -1;
+    return (long long)st.st_size;
+}

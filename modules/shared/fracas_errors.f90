@@ -6,7 +6,7 @@ module fracas_errors
   use fracas_strings, only: itoa
   implicit none
   private
-  public :: fatal, input_error, warn, set_cleanup, cleanup_proc, stop_run, itoa
+  public :: fatal, input_error, warn, set_cleanup, cleanup_proc, stop_run, itoa, error_exit_running
   public :: exit_error, exit_unconverged
 
   !> Exit statuses of the programs (documented in fracas --help and doc/):
@@ -69,6 +69,12 @@ contains
     character(len=*), intent(in) :: message
     write (error_unit, '(a)') 'fracas: warning: '//trim(message)
   end subroutine warn
+
+  !> True while the clean-up before an error exit runs: what it calls must not
+  !> report a second error (it would stop the clean-up half way), only warn.
+  logical function error_exit_running()
+    error_exit_running = in_cleanup
+  end function error_exit_running
 
   subroutine run_cleanup()
     if (associated(cleanup) .and. .not. in_cleanup) then

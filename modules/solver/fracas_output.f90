@@ -11,7 +11,7 @@ module fracas_output
   use fracas_kinds, only: wp, ik, i8
   use fracas_errors, only: fatal
   use fracas_ids, only: inter_names, status_names, n_inter, bm_rigid, bm_mesh
-  use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, list_dir, name_t
+  use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, list_dir, name_t, close_written
   use fracas_deck, only: dof_record_t, contact_record_t, deck_t, run_control_t, gpv_record_t
   use fracas_datbox_text, only: itoa, load_text, text_file_t
   use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset, h5_close_group, h5_create_group
@@ -48,6 +48,10 @@ module fracas_output
   integer, parameter :: n_outline = 24   !< points of a circle or wall outline
   !> Seconds of wall time between flushes of the POSTPRO files.
   real(wp), parameter :: flush_interval = 2.0_wp
+  !> Bytes of OUTBOX/fracas.h5.reserve: disk space held for the run's end, freed
+  !> before fracas.h5 is closed, so that a full disk still leaves room for
+  !> HDF5's last metadata writes (else the file is left unreadable).
+  integer, parameter :: reserve_bytes = 1048576
   character(len=*), parameter :: units_statement = 'the units of the deck: Fracas has no unit system of '// &
     'its own; lengths, masses, times, forces (and so velocities, energies) are in the units the deck '// &
     'was written in (SI for a deck in metres, kilograms and seconds)'
@@ -62,6 +66,7 @@ module fracas_output
     integer :: part_meshes = -1, part_interfaces = -1, part_cracks = -1
     type(results_h5_t) :: h5
     logical :: h5_open = .false.
+    character(len=:), allocatable :: reserve   !< OUTBOX/fracas.h5.reserve while the run holds it
     type(postpro_t) :: pp
     integer(i8) :: last_flush = 0
     !> CPU time spent writing (so that a loaded machine does not inflate it), and
@@ -95,6 +100,7 @@ contains
     o%vtk_single = deck%run%output_vtk_precision /= 'double'
     call clear_earlier_results(out_dir, overwrite, with_vtk)
     call make_dir(o%outbox, parents=.true.)
+    call hold_reserve(o)
     if (with_vtk) then
       call make_dir(o%display, parents=.true.)
       call pvd_init(o%pvd, o%display//'/fracas.pvd')
@@ -140,6 +146,23 @@ contains
     call postpro_open(o%pp, deck%postpro, out_dir, deck%run%nlgs_check, sc%meshes)
     call system_clock(o%last_flush)
   end subroutine output_open
+
+  !> Write OUTBOX/fracas.h5.reserve (reserve_bytes of zeros).
+  subroutine hold_reserve(o)
+    type(output_t), intent(inout) :: o
+    integer :: u, ios, k
+    character(len=65536) :: zeros
+    o%reserve = o%outbox//'/fracas.h5.reserve'
+    zeros = repeat(achar(0), len(zeros))
+    open (newunit=u, file=o%reserve, status='replace', access='stream', form='unformatted', action='write', &
+          iostat=ios)
+    if (ios /= 0) call fatal('cannot open '//o%reserve//' for writing')
+    do k = 1, reserve_bytes / len(zeros)
+      write (u, iostat=ios) zeros
+      if (ios /= 0) exit
+    end do
+    call close_written(u, o%reserve)
+  end subroutine hold_reserve
 
   !> /run: the run control the run used (every COMMAND.DAT keyword, after the
   !> --set settings), where it came from, and the settings themselves.
@@ -309,8 +332,8 @@ contains
     output_owns = .false.
     select case (dir)
     case ('OUTBOX')
-      output_owns = name == 'fracas.h5' .or. counted(name, 'DOF.OUT.') .or. counted(name, 'Vloc_Rloc.OUT.') &
-                    .or. counted(name, 'GPV.OUT.')
+      output_owns = name == 'fracas.h5' .or. name == 'fracas.h5.reserve' .or. counted(name, 'DOF.OUT.') .or. &
+                    counted(name, 'Vloc_Rloc.OUT.') .or. counted(name, 'GPV.OUT.')
     case ('DISPLAY')
       if (name == 'fracas.pvd') then
         output_owns = .true.
@@ -1058,6 +1081,13 @@ contains
     type(output_t), intent(inout) :: o
     logical, intent(in), optional :: complete
     character(len=*), intent(in), optional :: end_reason
+    integer :: stat
+    if (allocated(o%reserve)) then
+      call remove_file(o%reserve, stat)
+      deallocate (o%reserve)
+    end if
+    ! An error while closing stops the run; its clean-up closes again with
+    ! complete = 0, going on past HDF5 errors (fracas_h5: check).
     if (o%h5_open) call results_close(o%h5, complete, end_reason)
     o%h5_open = .false.
     call postpro_close(o%pp)

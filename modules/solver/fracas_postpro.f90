@@ -31,7 +31,7 @@ module fracas_postpro
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, warn, input_error
   use fracas_deck, only: postpro_input_t
-  use fracas_files, only: make_dir
+  use fracas_files, only: make_dir, check_written, close_written
   use fracas_ids, only: st_noctc
   use fracas_datbox_text, only: itoa, parse_int
   use fracas_scene, only: scene_t, step_report_t, scene_body_impulses
@@ -289,14 +289,15 @@ contains
     end associate
   end function step_dissipation
 
-  !> Hand the lines written so far to the system (a killed run keeps them).
+  !> Hand the lines written so far to the system (a killed run keeps them),
+  !> and stop the run if they did not reach the disk (fracas_files).
   subroutine postpro_flush(pp)
     type(postpro_t), intent(inout) :: pp
     integer :: k, j
     if (.not. pp%active) return
     do k = 1, size(pp%cmds)
       do j = 1, size(pp%cmds(k)%units)
-        flush (pp%cmds(k)%units(j))
+        call check_written(pp%cmds(k)%units(j), unit_file(pp%cmds(k)%units(j)))
       end do
     end do
   end subroutine postpro_flush
@@ -305,13 +306,22 @@ contains
     type(postpro_t), intent(inout) :: pp
     integer :: k, j
     if (.not. pp%active) return
+    pp%active = .false.   ! first: a write error stops the run, whose clean-up closes again
     do k = 1, size(pp%cmds)
       do j = 1, size(pp%cmds(k)%units)
-        close (pp%cmds(k)%units(j))
+        call close_written(pp%cmds(k)%units(j), unit_file(pp%cmds(k)%units(j)))
       end do
     end do
-    pp%active = .false.
   end subroutine postpro_close
+
+  !> The file open on unit u.
+  function unit_file(u) result(path)
+    integer, intent(in) :: u
+    character(len=:), allocatable :: path
+    character(len=4096) :: name
+    inquire (unit=u, name=name)
+    path = trim(name)
+  end function unit_file
 
   !> True for the names of the files a run may write in POSTPRO/ (for
   !> clearing or refusing the results of an earlier run).
