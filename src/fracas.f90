@@ -10,7 +10,7 @@ program fracas
   use fracas_read_deck, only: read_deck
   use fracas_mailx, only: mailx_solver_summary
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
-  use fracas_output, only: output_t, output_open, output_vtk, output_outbox, output_snapshot, &
+  use fracas_output, only: output_t, output_prepare, output_open, output_vtk, output_outbox, output_snapshot, &
                            output_series, output_close, output_summary, output_timing
   use fracas_version, only: version_string
   use fracas_state_guard, only: scene_check_start, scene_fault
@@ -117,6 +117,7 @@ contains
         itoa(sc%steps_done)//' of '//itoa(nsteps)//' (raise number_of_steps, e.g. --set number_of_steps=N)')
     end if
     first_step = sc%steps_done + 1
+    call output_prepare(out, sc, deck)
     if (check_only) then
       write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'check: OK (', sc%bodies%n + sc%meshes%n, ' bodies, ', sc%tactors%n, &
         ' contactors, ', size(sc%laws), ' contact laws, ', nsteps - first_step + 1, ' steps)'

@@ -31,10 +31,11 @@ module fracas_output
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close, results_flush, &
                                results_group, results_last_snapshot
-  use fracas_postpro, only: postpro_t, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns
+  use fracas_postpro, only: postpro_t, postpro_prepare, postpro_open, postpro_step, postpro_flush, postpro_close, &
+                            postpro_owns
   implicit none
   private
-  public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
+  public :: output_t, output_prepare, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
             output_flush, output_close, series_names, output_owns, output_summary, output_timing
 
   integer, parameter :: n_series = 35
@@ -80,12 +81,22 @@ module fracas_output
 
 contains
 
-  !> Prepare OUT_DIR for the run of DECK (the scene SC built from it): clear
-  !> or refuse the results of an earlier run (see the module comment), create
-  !> OUTBOX/ (and DISPLAY/ if output_vtk_every > 0, POSTPRO/ if POSTPRO.DAT
-  !> asks for files), open OUTBOX/fracas.h5 and write what the run is.
-  subroutine output_open(o, sc, deck, out_dir, overwrite)
+  !> The checks of the output requests against the scene (POSTPRO.DAT's
+  !> commands and node sets), before anything is written: --check runs them.
+  subroutine output_prepare(o, sc, deck)
     type(output_t), intent(out) :: o
+    type(scene_t), intent(in) :: sc
+    type(deck_t), intent(in) :: deck
+    call postpro_prepare(o%pp, deck%postpro, deck%run%nlgs_check, sc%meshes)
+  end subroutine output_prepare
+
+  !> Prepare OUT_DIR for the run of DECK (the scene SC built from it; O from
+  !> output_prepare): clear or refuse the results of an earlier run (see the
+  !> module comment), create OUTBOX/ (and DISPLAY/ if output_vtk_every > 0,
+  !> POSTPRO/ if POSTPRO.DAT asks for files), open OUTBOX/fracas.h5 and write
+  !> what the run is.
+  subroutine output_open(o, sc, deck, out_dir, overwrite)
+    type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
     type(deck_t), intent(in) :: deck
     character(len=*), intent(in) :: out_dir
@@ -143,7 +154,7 @@ contains
     call write_contactors_group(o, sc)
     call results_flush(o%h5)
 
-    call postpro_open(o%pp, deck%postpro, out_dir, deck%run%nlgs_check, sc%meshes)
+    call postpro_open(o%pp, out_dir)
     call system_clock(o%last_flush)
   end subroutine output_open
 

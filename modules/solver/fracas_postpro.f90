@@ -38,7 +38,7 @@ module fracas_postpro
   use fracas_mailx, only: mailx_t
   implicit none
   private
-  public :: postpro_t, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns
+  public :: postpro_t, postpro_prepare, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns
 
   integer, parameter :: pp_solver = 1, pp_body = 2, pp_torque = 3, pp_dissipated = 4, pp_dep = 5, pp_fint = 6
 
@@ -66,13 +66,13 @@ module fracas_postpro
 
 contains
 
-  !> Open OUT_DIR/POSTPRO/ and its files for the commands of POSTPRO.DAT
-  !> (none: nothing is written). check: the NLGS norm (Quad, Maxm, QM/16);
-  !> meshes: the meshed bodies (for the node sets).
-  subroutine postpro_open(pp, commands, out_dir, check, meshes)
+  !> Read and check the commands of POSTPRO.DAT against the scene (errors at
+  !> their lines; run by --check too, before anything is written). check: the
+  !> NLGS norm (Quad, Maxm, QM/16); meshes: the meshed bodies (for the node sets).
+  subroutine postpro_prepare(pp, commands, check, meshes)
     type(postpro_t), intent(out) :: pp
     type(postpro_input_t), intent(in) :: commands(:)
-    character(len=*), intent(in) :: out_dir, check
+    character(len=*), intent(in) :: check
     type(mailx_t), intent(in) :: meshes
     type(pp_command_t), allocatable :: cmds(:)
     integer :: k, n, j
@@ -124,6 +124,15 @@ contains
       n = j
     end if
     pp%cmds = cmds(1:n)
+  end subroutine postpro_prepare
+
+  !> Open OUT_DIR/POSTPRO/ and the files of the prepared commands (none:
+  !> nothing is written).
+  subroutine postpro_open(pp, out_dir)
+    type(postpro_t), intent(inout) :: pp
+    character(len=*), intent(in) :: out_dir
+    integer :: k, j, n
+    n = size(pp%cmds)
     pp%active = n > 0
     if (.not. pp%active) return
     pp%dir = trim(out_dir)//'/POSTPRO'
@@ -260,8 +269,13 @@ contains
     subroutine next_line(what)
       character(len=*), intent(in) :: what
       line = line + 1
-      if (line > size(c%params)) call input_error(c%src%file, c%src%line, 1, 'NEW MECAx SETS: expected '//what// &
-                                                  ' after line '//itoa(c%src%line + line - 1))
+      ! Located at the command's last line (the set count promised more lines).
+      if (line > size(c%params)) then
+        if (size(c%params) == 0) call input_error(c%src%file, c%src%line, 1, 'NEW MECAx SETS: expected '//what// &
+                                                  ' after this command')
+        call input_error(c%src%file, c%param_lines(size(c%params)), 1, 'NEW MECAx SETS: expected '//what// &
+                         ' after this line (the sets counted at line '//itoa(c%param_lines(1))//' need more)')
+      end if
     end subroutine next_line
 
     integer function next_int(what, lowest) result(v)
