@@ -38,7 +38,8 @@ module fracas_postpro
   use fracas_mailx, only: mailx_t
   implicit none
   private
-  public :: postpro_t, postpro_prepare, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns
+  public :: postpro_t, postpro_prepare, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns, &
+            postpro_sums, postpro_restore_sums
 
   integer, parameter :: pp_solver = 1, pp_body = 2, pp_torque = 3, pp_dissipated = 4, pp_dep = 5, pp_fint = 6
 
@@ -302,6 +303,22 @@ contains
       end do
     end associate
   end function step_dissipation
+
+  !> The running sums of the commands (DISSIPATED ENERGY's cumulative column),
+  !> for restart points.
+  function postpro_sums(pp) result(s)
+    type(postpro_t), intent(in) :: pp
+    real(wp), allocatable :: s(:)
+    s = [pp%dissipated]
+  end function postpro_sums
+
+  !> Continue the running sums of a restart point (none in files written before
+  !> they were kept: the sums start again from 0, as they did).
+  subroutine postpro_restore_sums(pp, s)
+    type(postpro_t), intent(inout) :: pp
+    real(wp), intent(in) :: s(:)
+    if (size(s) >= 1) pp%dissipated = s(1)
+  end subroutine postpro_restore_sums
 
   !> Hand the lines written so far to the system (a killed run keeps them),
   !> and stop the run if they did not reach the disk (fracas_files).
