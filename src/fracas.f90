@@ -3,7 +3,7 @@
 program fracas
   use, intrinsic :: iso_fortran_env, only: output_unit, int64
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged
+  use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged, set_error_context, last_error
   use fracas_strings, only: itoa, rtoa
   use fracas_datbox_text, only: parse_int
   use fracas_deck, only: deck_t
@@ -150,6 +150,7 @@ contains
     first_unconverged = 0
     call clocks(t0, cpu0)
     do istep = first_step, nsteps
+      call set_error_context(step='step '//itoa(istep)//' (t='//rtoa(sc%time + sc%h)//')')
       call scene_step(sc, rep)
       fault = scene_fault(sc)
       if (len(fault) > 0) call fatal('step '//itoa(sc%step)//' (t='//rtoa(sc%time)//'): '//fault// &
@@ -169,6 +170,7 @@ contains
       if (.not. (rep%nlgs%converged .and. rep%newton_converged)) call not_converged()
       if (.not. quiet .and. (mod(istep, every) == 0 .or. istep == nsteps)) call progress()
     end do
+    call set_error_context(step='after step '//itoa(nsteps))
     call clocks(t1, cpu1)
     call since(t0, cpu0, t1, cpu1, loop_wall, loop_cpu)
     call output_timing(out, 'loop', loop_wall, loop_cpu)
@@ -241,9 +243,10 @@ contains
   end function check_norm
 
   !> Clean-up on a fatal error once the output is open: fracas.h5 is closed
-  !> with complete = 0, so that no reader takes it for a finished run.
+  !> with complete = 0, so that no reader takes it for a finished run, and
+  !> end_reason = the error message.
   subroutine close_incomplete()
-    call output_close(out, complete=.false.)
+    call output_close(out, complete=.false., end_reason=last_error())
   end subroutine close_incomplete
 
   !> Wall clock (ticks of system_clock) and process CPU time (s) now.

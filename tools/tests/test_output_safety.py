@@ -135,9 +135,13 @@ def test_vanished_postpro_folder_stops_the_run(tmp_path):
     finally:
         proc.kill()
     assert proc.returncode == 1, err
-    assert re.search(r"cannot write .*/POSTPRO/(BODY_0000001|SOLVER_INFORMATIONS)\.DAT: the file is gone", err), err
+    # the stop message names the step it happened in, and fracas.h5 keeps it as end_reason
+    m = re.search(r"fracas: error: (step \d+ \(t=\S+\): cannot write .*/POSTPRO/(BODY_0000001|SOLVER_INFORMATIONS)"
+                  r"\.DAT: the file is gone.*)", err)
+    assert m, err
     with h5py.File(out / "OUTBOX" / "fracas.h5", "r") as f:
         assert f.attrs["complete"] == 0
+        assert f.attrs["end_reason"] == m.group(1)
     assert not (out / "OUTBOX" / "fracas.h5.reserve").exists()
 
 

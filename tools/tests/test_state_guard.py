@@ -34,3 +34,5 @@ def test_diverged_nlgs_step_of_exploded_bars_stops(tmp_path):
     with h5py.File(case / "OUTBOX" / "fracas.h5") as f:
         assert f.attrs["complete"] == 0
         assert f["series/step"].shape == (step - 1,)               # the faulty step is not written
+        assert f.attrs["end_reason"].startswith(m.group(0))          # the stop message (issue 23, item 10)
+        assert "ran away" in f.attrs["end_reason"]
