@@ -46,7 +46,7 @@ module fracas_h5
   private
   public :: hid_t, h5_series_t
   public :: h5_init, h5_finalize
-  public :: h5_create_file, h5_open_file, h5_close_file, h5_flush, h5_open_objects
+  public :: h5_create_file, h5_open_file, h5_close_file, h5_flush, h5_open_objects, h5_file_renamed
   public :: h5_create_group, h5_open_group, h5_close_group, h5_exists
   public :: h5_write_attr, h5_read_attr, h5_has_attr
   public :: h5_write_dataset, h5_read_dataset, h5_dataset_dims
@@ -168,6 +168,12 @@ contains
                             ' (does its directory exist, is it writable?)')
     call h5pclose_f(fcpl, err)
   end subroutine h5_create_file
+
+  !> The open file was renamed to PATH (for messages).
+  subroutine h5_file_renamed(path)
+    character(len=*), intent(in) :: path
+    last_file = trim(path)
+  end subroutine h5_file_renamed
 
   !> Open an existing file, read-only unless writable.
   subroutine h5_open_file(path, fid, writable)

@@ -32,3 +32,27 @@ long long fracas_file_size(const char *path)
     if (stat(path, &st) != 0) return -1;
     return (long long)st.st_size;
 }
+
+/* Take an exclusive lock on PATH (created if missing) for the rest of the process:
+ * flock, released by the kernel when the process ends, even by SIGKILL. The pid is
+ * written into the file for the message of a run that finds it locked. Returns 0,
+ * -1 if the file cannot be opened, -2 if another process holds the lock. */
+#include <fcntl.h>
+#include <stdio.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+int fracas_lock_file(const char *path)
+{
+    char pid[32];
+    int n;
+    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (fd < 0) return -1;
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        close(fd);
+        return -2;
+    }
+    n = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
+    if (ftruncate(fd, 0) == 0 && write(fd, pid, (size_t)n) != n) { /* the pid is only informative */ }
+    return 0;
+}

@@ -10,7 +10,7 @@ module fracas_files
   implicit none
   private
   public :: atomic_rename, file_exists, dir_exists, make_dir, remove_file, list_dir, name_t, &
-            close_written, check_written, disk_size
+            close_written, check_written, disk_size, lock_file
 
   !> One name of a directory listing.
   type :: name_t
@@ -46,6 +46,11 @@ module fracas_files
     end function c_closedir
 
     !> modules/shared/fracas_dirlist.c
+    integer(c_int) function c_lock_file(path) bind(C, name='fracas_lock_file')
+      import :: c_int, c_char
+      character(kind=c_char), intent(in) :: path(*)
+    end function c_lock_file
+
     integer(c_long_long) function c_file_size(path) bind(C, name='fracas_file_size')
       import :: c_long_long, c_char
       character(kind=c_char), intent(in) :: path(*)
@@ -74,6 +79,19 @@ contains
       call fatal('cannot rename '//trim(from)//' to '//trim(to))
     end if
   end subroutine atomic_rename
+
+  !> Hold an exclusive lock on file PATH (created if missing) until the process
+  !> ends, however it ends. stat: 0 taken, 1 PATH cannot be opened, 2 another
+  !> process holds it.
+  subroutine lock_file(path, stat)
+    character(len=*), intent(in) :: path
+    integer, intent(out) :: stat
+    select case (c_lock_file(cstr(path)))
+    case (0); stat = 0
+    case (-2); stat = 2
+    case default; stat = 1
+    end select
+  end subroutine lock_file
 
   !> Bytes of file PATH on disk (-1 if it is not there).
   integer(int64) function disk_size(path)

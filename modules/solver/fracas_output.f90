@@ -11,7 +11,7 @@ module fracas_output
   use fracas_kinds, only: wp, ik, i8
   use fracas_errors, only: fatal
   use fracas_ids, only: inter_names, status_names, n_inter, bm_rigid, bm_mesh
-  use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, list_dir, name_t, close_written
+  use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, list_dir, name_t, close_written, lock_file
   use fracas_deck, only: dof_record_t, contact_record_t, deck_t, run_control_t, gpv_record_t
   use fracas_datbox_text, only: itoa, load_text, text_file_t
   use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset, h5_close_group, h5_create_group
@@ -30,7 +30,7 @@ module fracas_output
   use fracas_bulk, only: bulk_j2, gp_sxx, gp_szz, gp_ezz, gp_pxx, gp_pzz, gp_p, plane_stress
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close, results_flush, &
-                               results_group, results_last_snapshot
+                               results_group, results_last_snapshot, results_rename
   use fracas_postpro, only: postpro_t, postpro_prepare, postpro_open, postpro_step, postpro_flush, postpro_close, &
                             postpro_owns
   implicit none
@@ -68,6 +68,7 @@ module fracas_output
     type(results_h5_t) :: h5
     logical :: h5_open = .false.
     character(len=:), allocatable :: reserve   !< OUTBOX/fracas.h5.reserve while the run holds it
+    character(len=:), allocatable :: lock      !< OUTBOX/fracas.lock, held (flock) by the running run
     type(postpro_t) :: pp
     integer(i8) :: last_flush = 0
     !> CPU time spent writing (so that a loaded machine does not inflate it), and
@@ -109,12 +110,12 @@ contains
     with_vtk = deck%run%output_vtk_every > 0
     o%disk_points = deck%run%output_vtk_disks /= 'polygons'
     o%vtk_single = deck%run%output_vtk_precision /= 'double'
-    call clear_earlier_results(out_dir, overwrite, with_vtk)
+    call refuse_earlier_results(out_dir, overwrite)
     call make_dir(o%outbox, parents=.true.)
+    call lock_output(o, out_dir)
+    call clear_earlier_results(out_dir, with_vtk)
     call hold_reserve(o)
     if (with_vtk) then
-      call make_dir(o%display, parents=.true.)
-      call pvd_init(o%pvd, o%display//'/fracas.pvd')
       k = 0
       if (o%disk_points .and. any(sc%tactors%kind(1:sc%tactors%n) == tk_disk)) then
         o%part_disks = k
@@ -137,7 +138,10 @@ contains
       o%part_contacts = k
     end if
 
-    call results_open(o%h5, o%outbox//'/fracas.h5', overwrite, deck%case_dir, sc%h, sc%theta, series_names, &
+    ! Created as fracas.h5.part and renamed once its description is on disk: a
+    ! fracas.h5 is valid from its first byte (a kill before leaves a .part,
+    ! removed by the next run).
+    call results_open(o%h5, o%outbox//'/fracas.h5.part', overwrite, deck%case_dir, sc%h, sc%theta, series_names, &
                       version=version_string)
     o%h5_open = .true.
     call h5_write_attr(o%h5%fid, 'units', units_statement)
@@ -153,6 +157,11 @@ contains
     call write_run_group(o, deck)
     call write_contactors_group(o, sc)
     call results_flush(o%h5)
+    call results_rename(o%h5, o%outbox//'/fracas.h5')
+    if (with_vtk) then
+      call make_dir(o%display, parents=.true.)
+      call pvd_init(o%pvd, o%display//'/fracas.pvd')
+    end if
 
     call postpro_open(o%pp, out_dir)
     call system_clock(o%last_flush)
@@ -290,14 +299,26 @@ contains
     end associate
   end subroutine write_contactors_group
 
-  !> Refuse to start where results of an earlier run lie, or remove them
-  !> (overwrite); remove the '.part' files of a killed run either way.
-  subroutine clear_earlier_results(out_dir, overwrite, with_vtk)
+  !> Take OUTBOX/fracas.lock for the run (an flock, released when the process
+  !> ends however it ends): two runs never write into the same folder.
+  subroutine lock_output(o, out_dir)
+    type(output_t), intent(inout) :: o
     character(len=*), intent(in) :: out_dir
-    logical, intent(in) :: overwrite, with_vtk
+    integer :: stat
+    o%lock = o%outbox//'/fracas.lock'
+    call lock_file(o%lock, stat)
+    if (stat == 2) call fatal('another run is writing into '//trim(out_dir)//' ('//o%lock//' is locked by it): '// &
+      'wait for it to end, or write elsewhere with --output DIR')
+    if (stat /= 0) call fatal('cannot open '//o%lock//' (is '//o%outbox//' writable?)')
+  end subroutine lock_output
+
+  !> Refuse to start where results of an earlier run lie (unless overwrite).
+  subroutine refuse_earlier_results(out_dir, overwrite)
+    character(len=*), intent(in) :: out_dir
+    logical, intent(in) :: overwrite
     character(len=7), parameter :: dirs(3) = [character(len=7) :: 'OUTBOX', 'DISPLAY', 'POSTPRO']
     type(name_t), allocatable :: names(:)
-    character(len=:), allocatable :: found, path, base
+    character(len=:), allocatable :: found, path
     integer :: d, k, nfound
     found = ''
     nfound = 0
@@ -307,6 +328,7 @@ contains
       call list_dir(path, names)
       do k = 1, size(names)
         if (.not. output_owns(trim(dirs(d)), names(k)%s)) cycle
+        if (names(k)%s == 'fracas.h5.reserve') cycle   ! space held by a killed run, not a result
         nfound = nfound + 1
         if (nfound <= 3) found = found//', '//trim(dirs(d))//'/'//names(k)%s
       end do
@@ -314,6 +336,17 @@ contains
     if (nfound > 0 .and. .not. overwrite) call fatal('results of an earlier run in '//trim(out_dir)//': '// &
       found(3:)//merge(', ...', '     ', nfound > 3)//' ('//itoa(nfound)//' files). Pass --overwrite to '// &
       'remove them all and run again, or --output DIR to write elsewhere')
+  end subroutine refuse_earlier_results
+
+  !> Remove the results of an earlier run (the caller has refused them
+  !> unless overwrite) and the '.part' files of a killed run.
+  subroutine clear_earlier_results(out_dir, with_vtk)
+    character(len=*), intent(in) :: out_dir
+    logical, intent(in) :: with_vtk
+    character(len=7), parameter :: dirs(3) = [character(len=7) :: 'OUTBOX', 'DISPLAY', 'POSTPRO']
+    type(name_t), allocatable :: names(:)
+    character(len=:), allocatable :: path, base
+    integer :: d, k
     do d = 1, size(dirs)
       path = trim(out_dir)//'/'//trim(dirs(d))
       if (.not. dir_exists(path)) cycle
@@ -1096,6 +1129,11 @@ contains
     if (allocated(o%reserve)) then
       call remove_file(o%reserve, stat)
       deallocate (o%reserve)
+    end if
+    ! Still held until the process ends; a run that starts now takes a new file.
+    if (allocated(o%lock)) then
+      call remove_file(o%lock, stat)
+      deallocate (o%lock)
     end if
     ! An error while closing stops the run; its clean-up closes again with
     ! complete = 0, going on past HDF5 errors (fracas_h5: check).

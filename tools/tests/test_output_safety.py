@@ -185,3 +185,32 @@ def test_full_disk_stops_the_run_and_leaves_a_readable_file(tmp_path):
         assert not (out / "OUTBOX" / "fracas.h5.reserve").exists()
     finally:
         subprocess.run(["umount", str(small)])
+
+
+def test_a_running_run_locks_its_output_folder(tmp_path):
+    """A second run into the folder of a running one is refused, even with --overwrite
+    (it used to remove the first run's files and mix its own in); the lock dies with
+    the run, even by SIGKILL, and a run killed before fracas.h5 got its name leaves only
+    a fracas.h5.part, which does not count as results (issue 23, item 9)."""
+    out = tmp_path / "out"
+    deck = ROOT / "test_cases" / "hard" / "column_100"
+    first = subprocess.Popen([fracas_bin(), "-q", "--output", str(out), "--set", "number_of_steps=1000000",
+                              "--set", "output_hdf5_every=0", str(deck)],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        start = time.monotonic()
+        while not (out / "OUTBOX" / "fracas.h5").exists() and time.monotonic() - start < 20:
+            time.sleep(0.05)
+        p = run("-q", "--overwrite", "--output", out, "--set", "number_of_steps=5", deck)
+        assert p.returncode == 1
+        assert "another run is writing into" in p.stderr and "fracas.lock is locked" in p.stderr, p.stderr
+        assert first.poll() is None                               # the first run goes on
+    finally:
+        first.send_signal(signal.SIGKILL)
+        first.wait()
+    with h5py.File(out / "OUTBOX" / "fracas.h5", "r") as f:
+        assert f.attrs["complete"] == 0
+    (out / "OUTBOX" / "fracas.h5").rename(out / "OUTBOX" / "fracas.h5.part")   # as if killed before the rename
+    p = run("-q", "--output", out, "--set", "number_of_steps=5", deck)
+    assert p.returncode == 0, p.stderr
+    assert names(out / "OUTBOX") == ["DOF.OUT.1", "Vloc_Rloc.OUT.1", "fracas.h5"]
