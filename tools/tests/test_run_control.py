@@ -229,3 +229,21 @@ def test_converged_run_passes_in_fail_mode(tmp_path):
     p, h5 = run_unconverged(tmp_path, "fail", starve=False)
     assert p.returncode == 0, p.stderr
     assert "NLGS did not converge" not in p.stdout
+
+
+def test_newton_iterations_share_the_step_sweep_budget(tmp_path):
+    """A J2 body's Newton iterations share the step's NLGS sweep budget
+    (nlgs_sweeps_per_check x nlgs_max_checks, the bound --check enforces) instead of each
+    running it all (issue 23, item 11: one step took 354 s, 20 x the bound). The hydrided
+    plate (J2 matrix, cohesive interfaces) with a budget of 2 x 3 sweeps and a tolerance
+    it cannot meet: before, steps took up to 30 sweeps; now at most 6, marked unconverged."""
+    out = tmp_path / "out"
+    p = run("-q", "--set", "number_of_steps=120", "--set", "nlgs_sweeps_per_check=2", "--set", "nlgs_max_checks=3",
+            "--set", "nlgs_tolerance=1e-15", "--output", out,
+            ROOT / "test_cases" / "validation" / "hydrided_plate" / "weak")
+    assert p.returncode == 0, p.stderr
+    with h5py.File(out / "OUTBOX" / "fracas.h5") as f:
+        sweeps = f["series/sweeps"][:]
+        assert len(sweeps) == 120 and sweeps.max() <= 6
+        assert f["series/newton_iterations"][:].max() >= 2          # the steps did iterate
+        assert (f["series/converged"][:] == 0).all()
