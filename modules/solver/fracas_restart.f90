@@ -185,6 +185,8 @@ contains
     call real2('X', st%x, 3, sc%bodies%n)
     call real2('V', st%v, 3, sc%bodies%n)
     call real1('energies', st%energies, size(st%energies))
+    ! postpro_sums: DISSIPATED ENERGY's running sum (fracas_postpro), or none in older files.
+    if (size(st%postpro_sums) > 1) call bad('postpro_sums', itoa(size(st%postpro_sums))//' values, expected 1')
     call real1('postpro_sums', st%postpro_sums, size(st%postpro_sums))
     ! Contact history: first is CSR over the candidate contactors (empty: none kept).
     n = size(st%inter)
