@@ -244,38 +244,20 @@ def mutate_meshed(rng, dest, log):
                     p.write_text("\n".join(lines))
                     return True
         return False
-    if kind == "node_velocity":
-        p = dat / "DOF.INI"
+    if kind in ("node_velocity", "driven_node"):
+        # a V line of a mesh node in DOF.INI (V(1) or V(2)), or the CT of a driven mesh dof
+        name, what = (("DOF.INI", "DOF.INI mesh node velocity") if kind == "node_velocity" else
+                      ("DRV_DOF.DAT", "DRV_DOF.DAT mesh node CT"))
+        p = dat / name
         if not p.exists():
             return False
         lines = p.read_text(errors="replace").split("\n")
         model, rows = None, []
         for i, line in enumerate(lines):
-            if line.startswith(" MAILx"):
-                model = "MAILx"
-            elif line.startswith(" RBDY2"):
-                model = "RBDY2"
-            elif model == "MAILx" and "V(1)=" in line:
-                rows.append(i)
-        if not rows:
-            return False
-        i = rng.choice(rows)
-        nums = _numbers(lines[i])
-        _set_field(lines, i, rng.choice(nums[-2:]), rng.choice(MESH_EXTREMES), log, "DOF.INI mesh node velocity")
-        p.write_text("\n".join(lines))
-        return True
-    if kind == "driven_node":
-        p = dat / "DRV_DOF.DAT"
-        if not p.exists():
-            return False
-        lines = p.read_text(errors="replace").split("\n")
-        model, rows = None, []
-        for i, line in enumerate(lines):
-            if line.startswith(" MAILx"):
-                model = "MAILx"
-            elif line.startswith(" RBDY2"):
-                model = "RBDY2"
-            elif model == "MAILx" and line.lstrip().startswith(("vlocy", "force")):
+            if line.startswith((" MAILx", " RBDY2")):
+                model = line.split()[0]
+            elif model == "MAILx" and ("V(1)=" in line if kind == "node_velocity"
+                                       else line.lstrip().startswith(("vlocy", "force"))):
                 rows.append(i)
         if not rows:
             return False
@@ -283,7 +265,8 @@ def mutate_meshed(rng, dest, log):
         nums = _numbers(lines[i])
         if len(nums) < 2:
             return False
-        _set_field(lines, i, nums[1], rng.choice(MESH_EXTREMES), log, "DRV_DOF.DAT mesh node CT")
+        m = rng.choice(nums[-2:]) if kind == "node_velocity" else nums[1]
+        _set_field(lines, i, m, rng.choice(MESH_EXTREMES), log, what)
         p.write_text("\n".join(lines))
         return True
     p = dat / "POSTPRO.DAT"
