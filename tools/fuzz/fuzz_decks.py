@@ -551,6 +551,8 @@ def main():
     ap.add_argument("--keep-findings", default=None, help="copy decks that crash, hang or lie here")
     ap.add_argument("--keep-decks", action="store_true")
     ap.add_argument("--only", type=int, default=None, help="make and test deck I only")
+    ap.add_argument("--first", type=int, default=0,
+                    help="decks FIRST .. FIRST+DECKS-1 (a long batch run in chunks: same seed, same decks)")
     ap.add_argument("--check-timeout", type=float, default=30.0)
     ap.add_argument("--run-timeout", type=float, default=120.0)
     ap.add_argument("--json", default=None, help="write every outcome here")
@@ -571,7 +573,7 @@ def main():
     else:
         tmp = tempfile.TemporaryDirectory(prefix="fracas_fuzz_")
         work = Path(tmp.name)
-    ids = [args.only] if args.only is not None else list(range(args.decks))
+    ids = [args.only] if args.only is not None else list(range(args.first, args.first + args.decks))
     t0 = time.perf_counter()
     with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as ex:
         results = list(ex.map(lambda i: one_deck(args, sources, work, i), ids))
