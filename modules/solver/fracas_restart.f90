@@ -14,6 +14,7 @@ module fracas_restart
   use fracas_contacts, only: n_internals
   use fracas_bulk, only: gp_size
   use fracas_scene, only: scene_t
+  use fracas_state_guard, only: scene_fault
   use fracas_restart_h5, only: restart_state_t, restart_h5_write, restart_h5_read
   use fracas_results_h5, only: results_h5_t
   use fracas_mailx, only: mailx_restore_state
@@ -105,11 +106,9 @@ contains
     real(wp), allocatable, intent(out) :: postpro_sums(:)
     type(restart_state_t) :: st
     integer :: n
+    character(len=:), allocatable :: fault
     call restart_h5_read(path, step, st)
     call validate_point(st, sc)
-    if (allocated(st%mesh_x)) then
-      call mailx_restore_state(sc%meshes, st%mesh_x, st%mesh_v, st%mesh_gp, st%mesh_fint, st%mesh_energies)
-    end if
     if (allocated(st%crack_beta)) then
       sc%cracks%pt_beta = st%crack_beta
       sc%cracks%pt_glued = st%crack_flags(1, :) == 1
@@ -160,6 +159,18 @@ contains
       d%pair_law = st%pairs(4, :)
       d%pair_alert = st%pair_alert
     end associate
+    ! The state the point holds must pass the state guard, as after any step
+    ! (finite but absurd values: a body or node beyond what double precision
+    ! resolves at its size), before the meshes are assembled from it.
+    if (allocated(st%mesh_x)) then
+      sc%meshes%x = st%mesh_x
+      sc%meshes%v = st%mesh_v
+      sc%meshes%gp = st%mesh_gp
+    end if
+    fault = scene_fault(sc)
+    if (len(fault) > 0) call fatal('restart point '//st%where//': the state it holds is not sound: '//fault)
+    if (allocated(st%mesh_x)) &
+      call mailx_restore_state(sc%meshes, st%mesh_x, st%mesh_v, st%mesh_gp, st%mesh_fint, st%mesh_energies)
     vtk_frames = st%vtk_frames
     outbox_writes = st%outbox_writes
     postpro_sums = st%postpro_sums

@@ -50,6 +50,9 @@ CASES = {
                            r"/restart/5/history/an: value 0 \(from 0\) is 2147483647, outside 1 \.\. 174"),
     "mesh_energies_short": (lambda g: replace(g, "mesh/energies", g["mesh/energies"][:-1]),
                             r"/restart/5/mesh/energies: 4 values, expected 5"),
+    # finite but absurd: the restored state must pass the state guard
+    "mesh_v_huge": (lambda g: replace(g, "mesh/V", g["mesh/V"][:] + 1e300),
+                    r"/restart/5: the state it holds is not sound: MAILx body 1 ran away: the velocity of node 1"),
     "beta_out_of_range": (lambda g: replace(g, "cracks/beta", g["cracks/beta"][:] + 2.0),
                           r"/restart/5/cracks/beta: a damage outside \[0, 1\]"),
 }
