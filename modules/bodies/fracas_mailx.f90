@@ -20,7 +20,7 @@ module fracas_mailx
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, input_error, set_error_context
   use fracas_strings, only: itoa, rtoa
-  use fracas_deck, only: deck_t, element_input_t, model_input_t
+  use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, el_geometry_ok, el_area
   use fracas_bulk, only: bulk_t, bulk_j2, plane_strain, plane_stress, gp_size, bulk_from_material, &
@@ -256,7 +256,7 @@ contains
       if (node > 0) call input_error(deck%bodies(ib)%src%file, deck%bodies(ib)%src%line, 0, 'MAILx body '// &
         itoa(b)//': node '//itoa(node)//' belongs to no element and is not driven: it has no mass and no '// &
         'stiffness (its row of the iteration matrix is zero); give it an element, drive both its dofs or remove it')
-      call factorize_body(m, b)
+      call factorize_body(m, b, deck%bodies(ib)%src)
     end do
     call compliance_sets_init(m)
 
@@ -558,9 +558,10 @@ contains
 
   !> Factorize A_ff = M_ff + h²θ² K_ff of body b: the dense inverse, or the
   !> sparse factorization (numeric refactorization once the pattern is known).
-  subroutine factorize_body(m, b)
+  subroutine factorize_body(m, b, src)
     type(mailx_t), intent(inout) :: m
     integer, intent(in) :: b
+    type(source_t), intent(in), optional :: src   !< the body's deck line: a failure there is an input error
     integer :: nd, nf, i, j, k, n0, minor
     character(len=:), allocatable :: at
     integer, allocatable :: fidx(:), ti(:), tj(:)
@@ -590,8 +591,10 @@ contains
           at = ''
           if (minor > 0) at = ' at node '//itoa((fidx(minor) - 1) / 2 + 1)//' dof '//itoa(2 - mod(fidx(minor), 2))// &
                                  ' (leading minor '//itoa(minor)//' of '//itoa(nf)//')'
-          call fatal('MAILx body '//itoa(b)//': its iteration matrix M + (h theta)^2 K is not positive definite'// &
-                     at//' (a density, Young''s modulus or time step out of proportion with the others?)')
+          at = 'MAILx body '//itoa(b)//': its iteration matrix M + (h theta)^2 K is not positive definite'// &
+               at//' (a density, Young''s modulus or time step out of proportion with the others?)'
+          if (present(src)) call input_error(src%file, src%line, 0, at)
+          call fatal(at)
         end if
         do j = 1, nf
           do i = 1, nf

@@ -221,10 +221,10 @@ contains
     n = size(st%pair_alert)
     if (size(st%pairs, 1) /= 4 .or. size(st%pairs, 2) /= n) call bad('pairs', 'shape ('//itoa(size(st%pairs, 1))// &
       ','//itoa(size(st%pairs, 2))//'), expected (4,'//itoa(n)//') as pair_alert')
-    call int1('pairs (candidates)', st%pairs(1, :), n, 1, nt)
-    call int1('pairs (antagonists)', st%pairs(2, :), n, 1, nt)
-    call int1('pairs (interactions)', st%pairs(3, :), n, 1, n_inter)
-    call int1('pairs (laws)', st%pairs(4, :), n, 1, size(sc%laws))
+    call int1('pairs', st%pairs(1, :), n, 1, nt, 'candidate ')
+    call int1('pairs', st%pairs(2, :), n, 1, nt, 'antagonist ')
+    call int1('pairs', st%pairs(3, :), n, 1, n_inter, 'interaction type ')
+    call int1('pairs', st%pairs(4, :), n, 1, size(sc%laws), 'law ')
     call real1('pair_alert', st%pair_alert, n)
     if (any(st%pair_alert < 0.0_wp)) call bad('pair_alert', 'a negative alert distance')
     if (allocated(st%mesh_x) .neqv. sc%meshes%nnodes > 0) &
@@ -244,11 +244,10 @@ contains
       if (any(st%crack_beta < 0.0_wp .or. st%crack_beta > 1.0_wp)) call bad('cracks/beta', 'a damage outside [0, 1]')
       if (size(st%crack_flags, 1) /= 4 .or. size(st%crack_flags, 2) /= n) call bad('cracks/flags', 'shape ('// &
         itoa(size(st%crack_flags, 1))//','//itoa(size(st%crack_flags, 2))//'), expected (4,'//itoa(n)//')')
-      do k = 1, 2
-        call int1('cracks/flags (glued, seen)', st%crack_flags(k, :), n, 0, 1)
-      end do
-      call int1('cracks/flags (partner)', st%crack_flags(3, :), n, 0, sc%meshes%n)
-      call int1('cracks/flags (antagonist)', st%crack_flags(4, :), n, 0, nt)
+      call int1('cracks/flags', st%crack_flags(1, :), n, 0, 1, 'glued flag ')
+      call int1('cracks/flags', st%crack_flags(2, :), n, 0, 1, 'seen flag ')
+      call int1('cracks/flags', st%crack_flags(3, :), n, 0, sc%meshes%n, 'partner body ')
+      call int1('cracks/flags', st%crack_flags(4, :), n, 0, nt, 'antagonist contactor ')
       call int1('cracks/broken_step', st%crack_broken_step, sc%cracks%nedges, 0, st%step)
       call real1('cracks/family_damage', st%crack_family_damage, sc%cracks%nfamilies)
     end if
@@ -287,13 +286,18 @@ contains
       end do
     end subroutine real2
 
-    subroutine int1(dataset, a, n, lo, hi)
+    !> what: the column's meaning for a 2-D dataset ('candidate ' of pairs).
+    subroutine int1(dataset, a, n, lo, hi, what)
       character(len=*), intent(in) :: dataset
       integer, intent(in) :: a(:), n, lo, hi
+      character(len=*), intent(in), optional :: what
+      character(len=:), allocatable :: w
       integer :: i
-      if (size(a) /= n) call bad(dataset, itoa(size(a))//' values, expected '//itoa(n))
+      w = ''
+      if (present(what)) w = what
+      if (size(a) /= n) call bad(dataset, itoa(size(a))//' '//w//'values, expected '//itoa(n))
       do i = 1, n
-        if (a(i) < lo .or. a(i) > hi) call bad(dataset, 'value '//itoa(i - 1)//' (from 0) is '//itoa(a(i))// &
+        if (a(i) < lo .or. a(i) > hi) call bad(dataset, w//'value '//itoa(i - 1)//' (from 0) is '//itoa(a(i))// &
           ', outside '//itoa(lo)//' .. '//itoa(hi))
       end do
     end subroutine int1
