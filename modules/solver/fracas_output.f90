@@ -8,12 +8,14 @@
 !> run lie (OUTBOX/, DISPLAY/, POSTPRO/ names a run writes), or removes them
 !> all first with overwrite; '.part' files of a killed run are removed.
 module fracas_output
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_kinds, only: wp, ik, i8
   use fracas_errors, only: fatal
   use fracas_ids, only: inter_names, status_names, n_inter, bm_rigid, bm_mesh
   use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, list_dir, name_t, close_written, lock_file
   use fracas_deck, only: dof_record_t, contact_record_t, deck_t, run_control_t, gpv_record_t
   use fracas_datbox_text, only: itoa, load_text, text_file_t
+  use fracas_strings, only: rtoa
   use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset, h5_close_group, h5_create_group
   use fracas_vtk, only: vtu_t, vtu_begin, vtu_points, vtu_cells, vtu_vertex_cells, vtu_point_data, &
                         vtu_cell_data, vtu_end, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_polygon, &
@@ -1051,6 +1053,8 @@ contains
     real(wp) :: per_family(sc%cracks%nfamilies)
     integer :: nbroken, ndamaged
     real(wp) :: t0
+    real(wp) :: row(n_series)
+    integer :: k
     if (.not. o%h5_open) return
     call cpu_time(t0)
     call cracks_lengths(sc%cracks, crack, damaged, per_family, nbroken, ndamaged)
@@ -1061,7 +1065,7 @@ contains
     wsupports = sc%work_supports + sc%meshes%work_supports
     balance = rep%kinetic + sc%meshes%elastic + sc%meshes%plastic_work + sc%cohesive_energy - sc%kinetic0 - &
               (wgrav + wforces + wsupports - sc%dissipated)
-    call results_append_step(o%h5, [real(sc%step, wp), sc%time, real(rep%contacts, wp), &
+    row = [real(sc%step, wp), sc%time, real(rep%contacts, wp), &
       real(rep%nlgs%nactive, wp), real(rep%nlgs%sweeps, wp), merge(1.0_wp, 0.0_wp, rep%nlgs%converged .and. rep%newton_converged), &
       rep%nlgs%residual, rep%nlgs%residual_onepq, rep%nlgs%quad_dv, rep%nlgs%maxm_dv, rep%nlgs%mean_dvor, &
       rep%kinetic, wgrav, wforces, wsupports, sc%dissipated, sc%cohesive_energy, &
@@ -1069,7 +1073,15 @@ contains
       rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
       sc%meshes%plastic_work, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
       real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds, &
-      real(rep%nlgs%updates, wp), rep%velocity_seconds])
+      real(rep%nlgs%updates, wp), rep%velocity_seconds]
+    ! A sound state can still give non-finite diagnostics (an NLGS residual of a
+    ! law stiffness near the largest double): the step's results are nonsense.
+    do k = 1, n_series
+      if (.not. ieee_is_finite(row(k))) call fatal('the series value '//trim(series_names(k))//' of the step is '// &
+        rtoa(row(k))//' (law parameters, masses or velocities beyond double precision?). The run stops; '// &
+        'fracas.h5 holds the steps before it and is marked incomplete')
+    end do
+    call results_append_step(o%h5, row)
     call postpro_step(o%pp, sc, rep)
     call flush_if_due(o)
     call clocked(o, k_series, t0)

@@ -233,6 +233,9 @@ contains
       call real2('mesh/X', st%mesh_x, 2, sc%meshes%nnodes)
       call real2('mesh/V', st%mesh_v, 2, sc%meshes%nnodes)
       call real2('mesh/gp', st%mesh_gp, gp_size, sc%meshes%ngp)
+      ! Gauss-point values are squared (von Mises, energies): beyond sqrt(huge) they overflow.
+      if (any(abs(st%mesh_gp) > sqrt(huge(1.0_wp)))) call bad('mesh/gp', 'a value beyond '// &
+        rtoa(sqrt(huge(1.0_wp)))//' (its square overflows double precision)')
       call real2('mesh/fint', st%mesh_fint, 2, sc%meshes%nnodes)
       call real1('mesh/energies', st%mesh_energies, 5)
     end if

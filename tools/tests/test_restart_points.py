@@ -53,6 +53,8 @@ CASES = {
     # finite but absurd: the restored state must pass the state guard
     "mesh_v_huge": (lambda g: replace(g, "mesh/V", g["mesh/V"][:] + 1e300),
                     r"/restart/5: the state it holds is not sound: MAILx body 1 ran away: the velocity of node 1"),
+    "gp_square_overflows": (lambda g: replace(g, "mesh/gp", np.full_like(g["mesh/gp"][:], -1e308)),
+                            r"/restart/5/mesh/gp: a value beyond 1\.34078E\+154 \(its square overflows"),
     "beta_out_of_range": (lambda g: replace(g, "cracks/beta", g["cracks/beta"][:] + 2.0),
                           r"/restart/5/cracks/beta: a damage outside \[0, 1\]"),
 }

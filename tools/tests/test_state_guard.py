@@ -9,7 +9,7 @@ import sys
 
 import h5py
 
-from fracas_run import ROOT, run
+from fracas_run import ROOT, copy_deck, run
 
 
 def test_diverged_nlgs_step_of_exploded_bars_stops(tmp_path):
@@ -36,3 +36,22 @@ def test_diverged_nlgs_step_of_exploded_bars_stops(tmp_path):
         assert f["series/step"].shape == (step - 1,)               # the faulty step is not written
         assert f.attrs["end_reason"].startswith(m.group(0))          # the stop message (issue 23, item 10)
         assert "ran away" in f.attrs["end_reason"]
+
+
+def test_non_finite_series_value_stops_the_run(tmp_path):
+    """A sound state can still give non-finite step results: mesh_t3_pair_czm with the
+    cohesive normal stiffness cn = 1e257 (found by the mesh23 fuzz batch, deck 9536)
+    wrote residual_natural_map = Inf into the series of a run that said complete = 1.
+    Now the step stops the run naming the series value; fracas.h5 says complete = 0."""
+    deck = copy_deck("mesh_t3_pair_czm", tmp_path)
+    tact = deck / "DATBOX" / "TACT_BEHAV.DAT"
+    text = tact.read_text()
+    assert "cn  = 1.0000000e+11" in text
+    tact.write_text(text.replace("cn  = 1.0000000e+11", "cn  = 1.000000E+257", 1))
+    out = tmp_path / "out"
+    p = run("-q", "--command", ROOT / "test_cases" / "compat" / "mesh_t3_pair_czm" / "run.dat",
+            "--set", "number_of_steps=5", "--output", out, deck, timeout=120)
+    assert p.returncode == 1, p.stderr
+    assert re.search(r"step 1 \(t=\S+\): the series value residual_natural_map of the step is Infinity", p.stderr), p.stderr
+    with h5py.File(out / "OUTBOX" / "fracas.h5") as f:
+        assert f.attrs["complete"] == 0 and "residual_natural_map" in f.attrs["end_reason"]
