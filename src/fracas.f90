@@ -3,18 +3,19 @@
 program fracas
   use, intrinsic :: iso_fortran_env, only: output_unit, int64
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged
+  use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged, set_error_context, last_error
   use fracas_strings, only: itoa, rtoa
   use fracas_datbox_text, only: parse_int
   use fracas_deck, only: deck_t
   use fracas_read_deck, only: read_deck
   use fracas_mailx, only: mailx_solver_summary
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
-  use fracas_output, only: output_t, output_open, output_vtk, output_outbox, output_snapshot, &
+  use fracas_output, only: output_t, output_prepare, output_open, output_vtk, output_outbox, output_snapshot, &
                            output_series, output_close, output_summary, output_timing
   use fracas_version, only: version_string
   use fracas_state_guard, only: scene_check_start, scene_fault
   use fracas_restart, only: restart_save, restart_load
+  use fracas_postpro, only: postpro_sums, postpro_restore_sums
   use fracas_command_line, only: argument_value
   implicit none
 
@@ -31,6 +32,7 @@ program fracas
   real(wp) :: late_max
   integer(int64) :: t0, t1, rate
   real(wp) :: worst_residual
+  real(wp), allocatable :: pp_sums(:)   !< POSTPRO running sums of the restart point
   ! Wall and CPU seconds of reading the deck, building the scene (meshes
   ! assembled and factorized) and the time loop, for OUTBOX/fracas.h5.
   real(wp) :: read_wall, read_cpu, setup_wall, setup_cpu, loop_wall, loop_cpu, cpu0, cpu1
@@ -112,11 +114,13 @@ contains
     if (restart_step >= 0 .and. len(restart_file) == 0) call fatal('--restart-step needs --restart FILE')
     if (len(restart_file) > 0) then
       ! Read the whole state before output_open may replace the file it comes from.
-      call restart_load(restart_file, restart_step, sc, vtk_frames, outbox_writes)
+      call restart_load(restart_file, restart_step, sc, vtk_frames, outbox_writes, pp_sums)
       if (sc%steps_done >= nsteps) call fatal('nothing to run: the restart point is at step '// &
         itoa(sc%steps_done)//' of '//itoa(nsteps)//' (raise number_of_steps, e.g. --set number_of_steps=N)')
     end if
     first_step = sc%steps_done + 1
+    call output_prepare(out, sc, deck)
+    if (allocated(pp_sums)) call postpro_restore_sums(out%pp, pp_sums)
     if (check_only) then
       write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'check: OK (', sc%bodies%n + sc%meshes%n, ' bodies, ', sc%tactors%n, &
         ' contactors, ', size(sc%laws), ' contact laws, ', nsteps - first_step + 1, ' steps)'
@@ -146,6 +150,7 @@ contains
     first_unconverged = 0
     call clocks(t0, cpu0)
     do istep = first_step, nsteps
+      call set_error_context(step='step '//itoa(istep)//' (t='//rtoa(sc%time + sc%h)//')')
       call scene_step(sc, rep)
       fault = scene_fault(sc)
       if (len(fault) > 0) call fatal('step '//itoa(sc%step)//' (t='//rtoa(sc%time)//'): '//fault// &
@@ -159,11 +164,13 @@ contains
       if (every_n(deck%run%output_dof_every) .or. (deck%run%output_dof_every == 0 .and. istep == nsteps)) &
         call output_outbox(out, sc)
       ! A restart point with every snapshot (which flushes the file) and at the last step.
-      if (every_n(hdf5_every) .or. istep == nsteps) call restart_save(out%h5, sc, out%n_vtk, out%n_out)
+      if (every_n(hdf5_every) .or. istep == nsteps) call restart_save(out%h5, sc, out%n_vtk, out%n_out, &
+                                                                               postpro_sums(out%pp))
       if (every_n(hdf5_every)) call output_snapshot(out, sc)
       if (.not. (rep%nlgs%converged .and. rep%newton_converged)) call not_converged()
       if (.not. quiet .and. (mod(istep, every) == 0 .or. istep == nsteps)) call progress()
     end do
+    call set_error_context(step='after step '//itoa(nsteps))
     call clocks(t1, cpu1)
     call since(t0, cpu0, t1, cpu1, loop_wall, loop_cpu)
     call output_timing(out, 'loop', loop_wall, loop_cpu)
@@ -236,9 +243,10 @@ contains
   end function check_norm
 
   !> Clean-up on a fatal error once the output is open: fracas.h5 is closed
-  !> with complete = 0, so that no reader takes it for a finished run.
+  !> with complete = 0, so that no reader takes it for a finished run, and
+  !> end_reason = the error message.
   subroutine close_incomplete()
-    call output_close(out, complete=.false.)
+    call output_close(out, complete=.false., end_reason=last_error())
   end subroutine close_incomplete
 
   !> Wall clock (ticks of system_clock) and process CPU time (s) now.

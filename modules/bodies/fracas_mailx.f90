@@ -18,9 +18,9 @@
 module fracas_mailx
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, input_error
+  use fracas_errors, only: fatal, input_error, set_error_context
   use fracas_strings, only: itoa, rtoa
-  use fracas_deck, only: deck_t, element_input_t, model_input_t
+  use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, el_geometry_ok, el_area
   use fracas_bulk, only: bulk_t, bulk_j2, plane_strain, plane_stress, gp_size, bulk_from_material, &
@@ -33,7 +33,7 @@ module fracas_mailx
   public :: mailx_t, mailx_build, mailx_restore_state, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
-            mailx_dense_max, mailx_gauss_values
+            mailx_dense_max, mailx_gauss_values, mailx_radius
 
   !> Bodies with at most this many dofs keep a dense inverse of A_ff (exploded
   !> elements, small meshes: the inverse is the contact compliance); larger
@@ -251,11 +251,36 @@ contains
       if (.not. iteration_matrix_finite(m, b)) call input_error(deck%bodies(ib)%src%file, &
         deck%bodies(ib)%src%line, 0, 'MAILx body '//itoa(b)//': its iteration matrix M + (h theta)^2 K '// &
         'is not finite (node coordinates, density, Young''s modulus or time step beyond double precision)')
-      call factorize_body(m, b)
+      ! A free node of no element has a zero row in M + (h theta)^2 K: singular.
+      node = orphan_node(b)
+      if (node > 0) call input_error(deck%bodies(ib)%src%file, deck%bodies(ib)%src%line, 0, 'MAILx body '// &
+        itoa(b)//': node '//itoa(node)//' belongs to no element and is not driven: it has no mass and no '// &
+        'stiffness (its row of the iteration matrix is zero); give it an element, drive both its dofs or remove it')
+      call factorize_body(m, b, deck%bodies(ib)%src)
     end do
     call compliance_sets_init(m)
 
   contains
+
+    !> The first node (numbered in its body) of body b with a free dof that no element uses, 0 if none.
+    integer function orphan_node(b)
+      integer, intent(in) :: b
+      logical, allocatable :: in_element(:)
+      integer :: e, n1, k
+      n1 = m%node_first(b)
+      allocate (in_element(n1:m%node_first(b + 1) - 1))
+      in_element = .false.
+      do e = m%elem_first(b), m%elem_first(b + 1) - 1
+        in_element(m%el_nodes(m%el_first(e):m%el_first(e + 1) - 1)) = .true.
+      end do
+      orphan_node = 0
+      do k = n1, m%node_first(b + 1) - 1
+        if (.not. in_element(k) .and. .not. all(m%driven(:, k))) then
+          orphan_node = k - n1 + 1
+          return
+        end if
+      end do
+    end function orphan_node
 
     !> Mesh node number of node `node` of MAILx body `body`, or an input error.
     integer function mesh_node(body, node, file, line)
@@ -322,6 +347,17 @@ contains
     end do
   end function model_index
 
+
+  !> Size of body b as a rigid body's radius: half the diagonal of the box
+  !> around its reference nodes (the state guard's scale for what double
+  !> precision resolves at the body).
+  pure real(wp) function mailx_radius(m, b) result(r)
+    type(mailx_t), intent(in) :: m
+    integer, intent(in) :: b
+    associate (x => m%ref(:, m%node_first(b):m%node_first(b + 1) - 1))
+      r = 0.5_wp * norm2(maxval(x, dim=2) - minval(x, dim=2))
+    end associate
+  end function mailx_radius
 
   !> Degrees of freedom of body b: 2 per node (x, y), in node order.
   pure integer function body_ndof(m, b)
@@ -522,10 +558,12 @@ contains
 
   !> Factorize A_ff = M_ff + h²θ² K_ff of body b: the dense inverse, or the
   !> sparse factorization (numeric refactorization once the pattern is known).
-  subroutine factorize_body(m, b)
+  subroutine factorize_body(m, b, src)
     type(mailx_t), intent(inout) :: m
     integer, intent(in) :: b
-    integer :: nd, nf, i, j, k, n0
+    type(source_t), intent(in), optional :: src   !< the body's deck line: a failure there is an input error
+    integer :: nd, nf, i, j, k, n0, minor
+    character(len=:), allocatable :: at
     integer, allocatable :: fidx(:), ti(:), tj(:)
     real(wp), allocatable :: a(:, :), ai(:, :), av(:)
     type(sparse_t) :: aff
@@ -548,9 +586,16 @@ contains
       m%dinv(m%dfirst(b) + 1:m%dfirst(b) + nd * nd) = 0.0_wp
       if (nf > 0) then
         ai = a(fidx, fidx)
-        call dense_spd_inverse(ai, ok)
-        if (.not. ok) call fatal('MAILx body '//itoa(b)//': its iteration matrix M + (h theta)^2 K is not '// &
-          'positive definite (a density, Young''s modulus or time step out of proportion with the others?)')
+        call dense_spd_inverse(ai, ok, minor)
+        if (.not. ok) then
+          at = ''
+          if (minor > 0) at = ' at node '//itoa((fidx(minor) - 1) / 2 + 1)//' dof '//itoa(2 - mod(fidx(minor), 2))// &
+                                 ' (leading minor '//itoa(minor)//' of '//itoa(nf)//')'
+          at = 'MAILx body '//itoa(b)//': its iteration matrix M + (h theta)^2 K is not positive definite'// &
+               at//' (a density, Young''s modulus or time step out of proportion with the others?)'
+          if (present(src)) call input_error(src%file, src%line, 0, at)
+          call fatal(at)
+        end if
         do j = 1, nf
           do i = 1, nf
             m%dinv(m%dfirst(b) + fidx(i) + nd * (fidx(j) - 1)) = ai(i, j)
@@ -585,12 +630,14 @@ contains
         if (m%lumped(b)) av(k) = m%mdiag(2 - mod(fidx(i), 2), n0 + (fidx(i) - 1) / 2)
       end do
       call sparse_from_triplets(nf, ti(1:k), tj(1:k), av(1:k), aff)
+      call set_error_context(object='MAILx body '//itoa(b)//' (iteration matrix M + (h theta)^2 K)')
       if (bb%factored) then
         call factor_update(bb%f, aff)
       else
         call factor_build(bb%f, aff, merge('cholmod', 'auto   ', m%method == 'cholmod'))
         bb%factored = .true.
       end if
+      call set_error_context(object='')
       ! The cached compliance is stale once A changes.
       if (allocated(bb%c)) deallocate (bb%c)
     end associate

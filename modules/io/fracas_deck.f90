@@ -225,6 +225,7 @@ module fracas_deck
   type :: deck_t
     character(len=:), allocatable :: case_dir, datbox
     real(wp) :: gravity(3) = 0.0_wp
+    type(source_t) :: gravity_src                    !< the gravity line of BULK_BEHAV.DAT
     type(body_input_t), allocatable :: bodies(:)     !< in the order of BODIES.DAT, all models
     type(model_input_t), allocatable :: models(:)    !< MODELS.DAT (empty without meshed bodies)
     type(material_input_t), allocatable :: materials(:)

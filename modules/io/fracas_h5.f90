@@ -40,13 +40,13 @@ module fracas_h5
                   h5lexists_f, h5ldelete_f, h5eset_auto_f
   use fracas_kinds, only: wp, ik
   use fracas_strings, only: itoa
-  use fracas_errors, only: fatal, warn
+  use fracas_errors, only: fatal, warn, error_exit_running
   use fracas_files, only: file_exists
   implicit none
   private
   public :: hid_t, h5_series_t
   public :: h5_init, h5_finalize
-  public :: h5_create_file, h5_open_file, h5_close_file, h5_flush, h5_open_objects
+  public :: h5_create_file, h5_open_file, h5_close_file, h5_flush, h5_open_objects, h5_file_renamed
   public :: h5_create_group, h5_open_group, h5_close_group, h5_exists
   public :: h5_write_attr, h5_read_attr, h5_has_attr
   public :: h5_write_dataset, h5_read_dataset, h5_dataset_dims
@@ -96,6 +96,8 @@ module fracas_h5
   end interface
 
   logical :: initialised = .false.
+  !> The file created or opened last (a run has one open at a time): errors name it.
+  character(len=:), allocatable :: last_file
   integer(hid_t) :: t_real = -1, t_int = -1
 
 contains
@@ -125,10 +127,20 @@ contains
     initialised = .false.
   end subroutine h5_finalize
 
+  !> An HDF5 failure stops the run, except in the clean-up of an error exit
+  !> (closing fracas.h5 with complete = 0), which goes on to close what it can.
   subroutine check(err, what)
     integer, intent(in) :: err
     character(len=*), intent(in) :: what
-    if (err < 0) call fatal('HDF5: '//what)
+    character(len=:), allocatable :: msg
+    if (err >= 0) return
+    msg = 'HDF5: '//what
+    if (allocated(last_file)) msg = msg//' (in '//last_file//'; disk full?)'
+    if (error_exit_running()) then
+      call warn(msg)
+    else
+      call fatal(msg)
+    end if
   end subroutine check
 
   ! ================================================================ files
@@ -141,6 +153,7 @@ contains
     integer :: err
     integer(hid_t) :: fcpl
     call h5_init()
+    last_file = trim(path)
     if (.not. overwrite .and. file_exists(path)) &
       call fatal(trim(path)//' exists; refusing to overwrite it (pass --overwrite to replace it)')
     call h5pcreate_f(H5P_FILE_CREATE_F, fcpl, err)
@@ -156,6 +169,12 @@ contains
     call h5pclose_f(fcpl, err)
   end subroutine h5_create_file
 
+  !> The open file was renamed to PATH (for messages).
+  subroutine h5_file_renamed(path)
+    character(len=*), intent(in) :: path
+    last_file = trim(path)
+  end subroutine h5_file_renamed
+
   !> Open an existing file, read-only unless writable.
   subroutine h5_open_file(path, fid, writable)
     character(len=*), intent(in) :: path
@@ -164,6 +183,7 @@ contains
     integer :: err
     logical :: w
     call h5_init()
+    last_file = trim(path)
     w = .false.
     if (present(writable)) w = writable
     if (.not. file_exists(path)) call fatal('HDF5 file '//trim(path)//' does not exist')

@@ -51,6 +51,10 @@ module fracas_restart_h5
     real(wp), allocatable :: mesh_x(:, :), mesh_v(:, :), mesh_gp(:, :), mesh_fint(:, :), mesh_energies(:)
     real(wp), allocatable :: crack_beta(:), crack_family_damage(:)
     integer, allocatable :: crack_flags(:, :), crack_broken_step(:)
+    !> Running sums of POSTPRO.DAT's commands (DISSIPATED ENERGY's cumulative
+    !> column), so that a restarted run continues them; empty in older files.
+    real(wp), allocatable :: postpro_sums(:)
+    character(len=:), allocatable :: where   !< 'PATH:/restart/<step>' (read only, for messages)
   end type restart_state_t
 
 contains
@@ -96,6 +100,7 @@ contains
     call h5_close_group(gh)
     call h5_write_dataset(g, 'pairs', st%pairs)
     call h5_write_dataset(g, 'pair_alert', st%pair_alert)
+    if (allocated(st%postpro_sums)) call h5_write_dataset(g, 'postpro_sums', st%postpro_sums)
     if (allocated(st%mesh_x)) then
       call h5_create_group(g, 'mesh', gh)
       call h5_write_dataset(gh, 'X', st%mesh_x)
@@ -143,6 +148,7 @@ contains
       ' (restart points are written with every HDF5 snapshot and at the last step; see h5ls '// &
       trim(path)//'/restart)')
     call h5_open_group(groot, name, g)
+    st%where = trim(path)//':/restart/'//name
     call h5_read_attr(g, 'step', ival); st%step = ival
     call h5_read_attr(g, 'steps_done', ival); st%steps_done = ival
     call h5_read_attr(g, 'time', st%time)
@@ -152,11 +158,12 @@ contains
     call h5_read_dataset(g, 'X', st%x)
     call h5_read_dataset(g, 'V', st%v)
     call h5_read_dataset(g, 'energies', e)
-    if (size(e) /= n_energies) call fatal(trim(path)//': restart point '//name//' has '//itoa(size(e))// &
-                                          ' energies, expected '//itoa(n_energies))
+    if (size(e) /= n_energies) call fatal('restart point '//st%where//'/energies: '//itoa(size(e))// &
+                                          ' values, expected '//itoa(n_energies))
     st%energies = e
     call h5_read_dataset(g, 'rng_state', halves)
-    if (size(halves) /= 2) call fatal(trim(path)//': restart point '//name//': bad rng_state')
+    if (size(halves) /= 2) call fatal('restart point '//st%where//'/rng_state: '//itoa(size(halves))// &
+                                      ' values, expected 2')
     st%rng_state = transfer(halves, st%rng_state)
     call h5_open_group(g, 'history', gh)
     call h5_read_dataset(gh, 'first', st%first)
@@ -170,6 +177,11 @@ contains
     call h5_close_group(gh)
     call h5_read_dataset(g, 'pairs', st%pairs)
     call h5_read_dataset(g, 'pair_alert', st%pair_alert)
+    if (h5_exists(g, 'postpro_sums')) then
+      call h5_read_dataset(g, 'postpro_sums', st%postpro_sums)
+    else
+      allocate (st%postpro_sums(0))
+    end if
     if (h5_exists(g, 'mesh')) then
       call h5_open_group(g, 'mesh', gh)
       call h5_read_dataset(gh, 'X', st%mesh_x)

@@ -20,8 +20,8 @@ module fracas_results_h5
   use fracas_kinds, only: wp, ik, i8
   use fracas_strings, only: itoa
   use fracas_errors, only: fatal
-  use fracas_files, only: file_exists
-  use fracas_h5, only: hid_t, h5_series_t, h5_create_file, h5_close_file, h5_flush, &
+  use fracas_files, only: file_exists, atomic_rename
+  use fracas_h5, only: hid_t, h5_series_t, h5_create_file, h5_close_file, h5_flush, h5_file_renamed, &
                        h5_create_group, h5_open_group, h5_close_group, h5_exists, &
                        h5_write_attr, h5_write_dataset, h5_create_series, h5_append, &
                        h5_close_series
@@ -29,7 +29,7 @@ module fracas_results_h5
   private
   public :: results_h5_t, results_open, results_write_bodies, results_write_help, &
             results_write_snapshot, results_append_step, results_flush, results_close, &
-            results_layout_version, results_group, results_last_snapshot
+            results_layout_version, results_group, results_last_snapshot, results_rename
 
   !> Bumped when the layout changes incompatibly; stored as root attribute layout_version.
   integer(ik), parameter :: results_layout_version = 1
@@ -60,6 +60,18 @@ contains
   !> extendible column per name), /snapshots, /snapshot_index and /help.
   !> An existing PATH is replaced only if overwrite; otherwise fatal.
   !> version: the program version string (default 'unknown').
+  !> The open results file gets the name PATH (e.g. from the PATH.part it was
+  !> created as, once its description is on disk: a reader never finds a
+  !> half-created file under PATH).
+  subroutine results_rename(r, path)
+    type(results_h5_t), intent(inout) :: r
+    character(len=*), intent(in) :: path
+    call require_open(r, 'results_rename')
+    call atomic_rename(r%path, path)
+    r%path = trim(path)
+    call h5_file_renamed(r%path)
+  end subroutine results_rename
+
   subroutine results_open(r, path, overwrite, case_dir, dt, theta, series_names, version)
     type(results_h5_t), intent(inout) :: r
     character(len=*), intent(in) :: path, case_dir

@@ -28,7 +28,7 @@ module fracas_vtk
   use fracas_kinds, only: wp, ik
   use fracas_strings, only: itoa
   use fracas_errors, only: fatal
-  use fracas_files, only: atomic_rename
+  use fracas_files, only: atomic_rename, close_written
   use fracas_datbox_text, only: itoa
   implicit none
   private
@@ -325,8 +325,7 @@ contains
     end if
     if (ios == 0) write (u, iostat=ios) '</VTKFile>'//nl
     if (ios /= 0) call fatal('cannot write '//part//' (disk full?)')
-    close (u, iostat=ios)
-    if (ios /= 0) call fatal('cannot write '//part)
+    call close_written(u, part)
     call atomic_rename(part, w%path)
     call vtu_abort(w)
   end subroutine vtu_end
@@ -588,8 +587,7 @@ contains
       '<VTKFile type="Collection" version="0.1" byte_order="'//byte_order()//'">'//nl// &
       '<Collection>'//nl//pvd%body//'</Collection>'//nl//'</VTKFile>'//nl
     if (ios /= 0) call fatal('cannot write '//part//' (disk full?)')
-    close (u, iostat=ios)
-    if (ios /= 0) call fatal('cannot write '//part)
+    call close_written(u, part)
     call atomic_rename(part, pvd%path)
   end subroutine pvd_write
 

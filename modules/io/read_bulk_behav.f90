@@ -7,7 +7,7 @@
 !> their line. The continuation lines of other laws are skipped.
 module fracas_read_bulk_behav
   use fracas_kinds, only: wp
-  use fracas_deck, only: material_input_t
+  use fracas_deck, only: material_input_t, source_t
   use fracas_errors, only: input_error
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, check_line_end, &
                                 keyword_of, is_data, get_real, get_word, itoa, rtoa
@@ -17,16 +17,19 @@ module fracas_read_bulk_behav
 
 contains
 
-  subroutine read_bulk_behav(path, gravity, materials)
+  !> gravity_src: the gravity line (for checks of the built scene), the file alone without $gravy.
+  subroutine read_bulk_behav(path, gravity, materials, gravity_src)
     character(len=*), intent(in) :: path
     real(wp), intent(out) :: gravity(3)
     type(material_input_t), allocatable, intent(out) :: materials(:)
+    type(source_t), intent(out), optional :: gravity_src
     type(text_file_t) :: tf
     integer :: i, nm, k, ngrav
     character(len=5) :: kw
 
     call load_text(path, tf)
     gravity = 0.0_wp
+    if (present(gravity_src)) gravity_src = source_t(path, 0)
     nm = 0
     do i = 1, tf%n
       if (keyword_of(tf%lines(i)) == 'behav') nm = nm + 1
@@ -46,6 +49,7 @@ contains
         gravity(2) = get_real(tf%lines(i + 1), 46, 59, "gravity y 'grv2='")
         gravity(3) = get_real(tf%lines(i + 1), 67, 80, "gravity z 'grv3='")
         call check_line_end(tf%lines(i + 1), 80, 'the gravity line')
+        if (present(gravity_src)) gravity_src = tf%lines(i + 1)%src
         i = i + 2
       case ('behav')
         call need_next(tf, i, "'$behav' must be followed by a material line (nickname, law, Umas=)")

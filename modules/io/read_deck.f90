@@ -51,7 +51,7 @@ contains
     if (.not. dir_exists(dat)) &
       call input_error(dat, 0, 0, 'DATBOX folder not found (a case directory holds DATBOX/BODIES.DAT, ...)')
 
-    call read_bulk_behav(required(dat//'/BULK_BEHAV.DAT'), deck%gravity, deck%materials)
+    call read_bulk_behav(required(dat//'/BULK_BEHAV.DAT'), deck%gravity, deck%materials, deck%gravity_src)
     call read_bodies(required(dat//'/BODIES.DAT'), deck%bodies, deck%materials)
 
     ! Meshed bodies: their elements' models (MODELS.DAT) and initial Gauss-point values (GPV.INI).

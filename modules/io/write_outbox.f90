@@ -5,7 +5,7 @@
 module fracas_write_outbox
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal
-  use fracas_files, only: atomic_rename
+  use fracas_files, only: atomic_rename, close_written
   use fracas_deck, only: dof_record_t, contact_record_t, gpv_record_t
   use fracas_read_vloc_rloc, only: vloc_layout_t, vloc_layout, internals_per_line
   implicit none
@@ -244,10 +244,7 @@ contains
   subroutine close_part(u, path)
     integer, intent(in) :: u
     character(len=*), intent(in) :: path
-    integer :: ios
-    character(len=256) :: iomsg
-    close (u, iostat=ios, iomsg=iomsg)
-    if (ios /= 0) call fatal('cannot close '//path//'.part: '//trim(iomsg))
+    call close_written(u, path//'.part')
     call atomic_rename(path//'.part', path)
   end subroutine close_part
 end module fracas_write_outbox

@@ -6,7 +6,8 @@ module fracas_errors
   use fracas_strings, only: itoa
   implicit none
   private
-  public :: fatal, input_error, warn, set_cleanup, cleanup_proc, stop_run, itoa
+  public :: fatal, input_error, warn, set_cleanup, cleanup_proc, stop_run, itoa, error_exit_running, &
+            set_error_context, last_error
   public :: exit_error, exit_unconverged
 
   !> Exit statuses of the programs (documented in fracas --help and doc/):
@@ -23,6 +24,12 @@ module fracas_errors
 
   procedure(cleanup_proc), pointer :: cleanup => null()
   logical :: in_cleanup = .false.
+  !> What the program is doing, prefixed to the messages of fatal and stop_run:
+  !> the step ('step N (t=...)', set by the driver around each step) and the
+  !> object (e.g. 'MAILx body 3', set around a factorization). '' when none.
+  character(len=:), allocatable :: step_context, object_context
+  !> The message of the error being reported (fracas.h5's end_reason).
+  character(len=:), allocatable :: last_message
 
 contains
 
@@ -35,10 +42,36 @@ contains
   !> Stop the run with a message (exit status 1).
   subroutine fatal(message)
     character(len=*), intent(in) :: message
-    write (error_unit, '(a)') 'fracas: error: '//trim(message)
-    call run_cleanup()
-    error stop 1, quiet=.true.
+    call stop_run(message, exit_error)
   end subroutine fatal
+
+  !> Set the step and/or object context of error messages ('' clears it).
+  subroutine set_error_context(step, object)
+    character(len=*), intent(in), optional :: step, object
+    if (present(step)) step_context = step
+    if (present(object)) object_context = object
+  end subroutine set_error_context
+
+  !> The message of the error being reported ('' before any).
+  function last_error() result(s)
+    character(len=:), allocatable :: s
+    s = ''
+    if (allocated(last_message)) s = last_message
+  end function last_error
+
+  !> MESSAGE with its context: 'step N (t=...): MAILx body 3: message' (the step
+  !> left out when the message names it already).
+  function in_context(message) result(s)
+    character(len=*), intent(in) :: message
+    character(len=:), allocatable :: s
+    s = trim(message)
+    if (allocated(object_context)) then
+      if (len(object_context) > 0) s = object_context//': '//s
+    end if
+    if (allocated(step_context)) then
+      if (len(step_context) > 0 .and. index(s, 'step ') /= 1) s = step_context//': '//s
+    end if
+  end function in_context
 
   !> Stop the run on bad input: "FILE:LINE:COL: message" (exit status 1).
   !> line or col <= 0 are left out (a whole-file or whole-line problem).
@@ -50,6 +83,7 @@ contains
     if (line > 0) where = where//':'//itoa(line)
     if (line > 0 .and. col > 0) where = where//':'//itoa(col)
     write (error_unit, '(a)') where//': '//trim(message)
+    last_message = where//': '//trim(message)
     call run_cleanup()
     error stop 1, quiet=.true.
   end subroutine input_error
@@ -59,7 +93,8 @@ contains
   subroutine stop_run(message, status)
     character(len=*), intent(in) :: message
     integer, intent(in) :: status
-    write (error_unit, '(a)') 'fracas: error: '//trim(message)
+    last_message = in_context(message)
+    write (error_unit, '(a)') 'fracas: error: '//last_message
     call run_cleanup()
     error stop status, quiet=.true.
   end subroutine stop_run
@@ -69,6 +104,12 @@ contains
     character(len=*), intent(in) :: message
     write (error_unit, '(a)') 'fracas: warning: '//trim(message)
   end subroutine warn
+
+  !> True while the clean-up before an error exit runs: what it calls must not
+  !> report a second error (it would stop the clean-up half way), only warn.
+  logical function error_exit_running()
+    error_exit_running = in_cleanup
+  end function error_exit_running
 
   subroutine run_cleanup()
     if (associated(cleanup) .and. .not. in_cleanup) then

@@ -1,12 +1,16 @@
 !> Small file-system operations through the C library (no shell commands):
 !> atomic rename (the last step of every "write PATH.part, then rename" output),
-!> existence tests, directory creation and listing, file removal.
+!> existence tests, directory creation and listing, file removal; closing a
+!> written file with a check that all of it reached the disk.
 module fracas_files
-  use, intrinsic :: iso_c_binding, only: c_int, c_long, c_char, c_null_char, c_ptr, c_associated
-  use fracas_errors, only: fatal
+  use, intrinsic :: iso_c_binding, only: c_int, c_long, c_long_long, c_char, c_null_char, c_ptr, c_associated
+  use, intrinsic :: iso_fortran_env, only: int64
+  use fracas_errors, only: fatal, error_exit_running
+  use fracas_strings, only: itoa
   implicit none
   private
-  public :: atomic_rename, file_exists, dir_exists, make_dir, remove_file, list_dir, name_t
+  public :: atomic_rename, file_exists, dir_exists, make_dir, remove_file, list_dir, name_t, &
+            close_written, check_written, disk_size, lock_file
 
   !> One name of a directory listing.
   type :: name_t
@@ -42,6 +46,16 @@ module fracas_files
     end function c_closedir
 
     !> modules/shared/fracas_dirlist.c
+    integer(c_int) function c_lock_file(path) bind(C, name='fracas_lock_file')
+      import :: c_int, c_char
+      character(kind=c_char), intent(in) :: path(*)
+    end function c_lock_file
+
+    integer(c_long_long) function c_file_size(path) bind(C, name='fracas_file_size')
+      import :: c_long_long, c_char
+      character(kind=c_char), intent(in) :: path(*)
+    end function c_file_size
+
     integer(c_long) function c_list_dir(path, buf, buflen) bind(C, name='fracas_list_dir')
       import :: c_long, c_char
       character(kind=c_char), intent(in) :: path(*)
@@ -65,6 +79,80 @@ contains
       call fatal('cannot rename '//trim(from)//' to '//trim(to))
     end if
   end subroutine atomic_rename
+
+  !> Hold an exclusive lock on file PATH (created if missing) until the process
+  !> ends, however it ends. stat: 0 taken, 1 PATH cannot be opened, 2 another
+  !> process holds it.
+  subroutine lock_file(path, stat)
+    character(len=*), intent(in) :: path
+    integer, intent(out) :: stat
+    select case (c_lock_file(cstr(path)))
+    case (0); stat = 0
+    case (-2); stat = 2
+    case default; stat = 1
+    end select
+  end subroutine lock_file
+
+  !> Bytes of file PATH on disk (-1 if it is not there).
+  integer(int64) function disk_size(path)
+    character(len=*), intent(in) :: path
+    disk_size = int(c_file_size(cstr(path)), int64)
+  end function disk_size
+
+  !> Close unit U, written to PATH, and make sure all of it reached the disk.
+  !> gfortran (12) reports neither a failed flush nor a failed close: on a full
+  !> disk the write(2) fails with ENOSPC, iostat stays 0 and the file is left
+  !> short or empty. So the size of the unit is compared with the size on disk;
+  !> when they differ PATH is removed and the run stops naming it. During the
+  !> fatal-error clean-up the unit is only closed (no second error).
+  subroutine close_written(u, path)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: path
+    integer(int64) :: want, got
+    integer :: ios, ios_close
+    character(len=256) :: msg
+    want = -1
+    inquire (unit=u, size=want, iostat=ios)
+    msg = ''
+    close (u, iostat=ios_close, iomsg=msg)
+    if (error_exit_running()) return
+    got = disk_size(path)
+    if (ios_close /= 0 .or. ios /= 0 .or. got /= want) then
+      call remove_file(path, ios)
+      call fatal(write_failure(path, got, want, msg))
+    end if
+  end subroutine close_written
+
+  !> Hand the lines of open unit U (file PATH) to the system and make sure they
+  !> reached the disk (see close_written); the unit stays open.
+  subroutine check_written(u, path)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: path
+    integer(int64) :: want, got
+    integer :: ios
+    character(len=256) :: msg
+    msg = ''
+    flush (u, iostat=ios, iomsg=msg)
+    if (error_exit_running()) return
+    want = -1
+    if (ios == 0) inquire (unit=u, size=want, iostat=ios)
+    got = disk_size(path)
+    if (ios /= 0 .or. got /= want) call fatal(write_failure(path, got, want, msg))
+  end subroutine check_written
+
+  function write_failure(path, got, want, msg) result(s)
+    character(len=*), intent(in) :: path, msg
+    integer(int64), intent(in) :: got, want
+    character(len=:), allocatable :: s
+    if (got < 0) then
+      s = 'cannot write '//trim(path)//': the file is gone (output folder removed?)'
+    else
+      s = 'cannot write '//trim(path)//': '//itoa(got)//' of its '//itoa(want)// &
+          ' bytes reached the disk (disk full?)'
+    end if
+    if (len_trim(msg) > 0) s = s//': '//trim(msg)
+    s = s//'. The run stops'
+  end function write_failure
 
   !> True if PATH names an existing file or directory.
   logical function file_exists(path)

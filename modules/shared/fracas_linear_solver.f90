@@ -328,16 +328,20 @@ contains
 
   !> c := c^-1 for a small symmetric positive definite matrix (both triangles returned).
   !> Without ok, a matrix that is not positive definite stops the run; with ok, ok is
-  !> false and c is left undefined.
-  subroutine dense_spd_inverse(c, ok)
+  !> false, c is left undefined and minor (if present) is the order of the first
+  !> leading minor that is not positive (0 if the inversion failed after it).
+  subroutine dense_spd_inverse(c, ok, minor)
     real(wp), intent(inout) :: c(:, :)
     logical, intent(out), optional :: ok
+    integer, intent(out), optional :: minor
     integer :: n, info, j
     n = size(c, 1)
     if (size(c, 2) /= n) call fatal('dense_spd_inverse: matrix is '//itoa(n)//' x '//itoa(size(c, 2))//', not square')
     if (present(ok)) ok = .true.
+    if (present(minor)) minor = 0
     if (n == 0) return
     call dpotrf('U', n, c, n, info)
+    if (info > 0 .and. present(minor)) minor = info
     if (info == 0) call dpotri('U', n, c, n, info)
     if (info /= 0) then
       if (present(ok)) then

@@ -8,12 +8,14 @@
 !> run lie (OUTBOX/, DISPLAY/, POSTPRO/ names a run writes), or removes them
 !> all first with overwrite; '.part' files of a killed run are removed.
 module fracas_output
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_kinds, only: wp, ik, i8
   use fracas_errors, only: fatal
   use fracas_ids, only: inter_names, status_names, n_inter, bm_rigid, bm_mesh
-  use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, list_dir, name_t
+  use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, list_dir, name_t, close_written, lock_file
   use fracas_deck, only: dof_record_t, contact_record_t, deck_t, run_control_t, gpv_record_t
   use fracas_datbox_text, only: itoa, load_text, text_file_t
+  use fracas_strings, only: rtoa
   use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset, h5_close_group, h5_create_group
   use fracas_vtk, only: vtu_t, vtu_begin, vtu_points, vtu_cells, vtu_vertex_cells, vtu_point_data, &
                         vtu_cell_data, vtu_end, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_polygon, &
@@ -30,11 +32,12 @@ module fracas_output
   use fracas_bulk, only: bulk_j2, gp_sxx, gp_szz, gp_ezz, gp_pxx, gp_pzz, gp_p, plane_stress
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close, results_flush, &
-                               results_group, results_last_snapshot
-  use fracas_postpro, only: postpro_t, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns
+                               results_group, results_last_snapshot, results_rename
+  use fracas_postpro, only: postpro_t, postpro_prepare, postpro_open, postpro_step, postpro_flush, postpro_close, &
+                            postpro_owns
   implicit none
   private
-  public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
+  public :: output_t, output_prepare, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
             output_flush, output_close, series_names, output_owns, output_summary, output_timing
 
   integer, parameter :: n_series = 35
@@ -48,6 +51,10 @@ module fracas_output
   integer, parameter :: n_outline = 24   !< points of a circle or wall outline
   !> Seconds of wall time between flushes of the POSTPRO files.
   real(wp), parameter :: flush_interval = 2.0_wp
+  !> Bytes of OUTBOX/fracas.h5.reserve: disk space held for the run's end, freed
+  !> before fracas.h5 is closed, so that a full disk still leaves room for
+  !> HDF5's last metadata writes (else the file is left unreadable).
+  integer, parameter :: reserve_bytes = 1048576
   character(len=*), parameter :: units_statement = 'the units of the deck: Fracas has no unit system of '// &
     'its own; lengths, masses, times, forces (and so velocities, energies) are in the units the deck '// &
     'was written in (SI for a deck in metres, kilograms and seconds)'
@@ -62,6 +69,8 @@ module fracas_output
     integer :: part_meshes = -1, part_interfaces = -1, part_cracks = -1
     type(results_h5_t) :: h5
     logical :: h5_open = .false.
+    character(len=:), allocatable :: reserve   !< OUTBOX/fracas.h5.reserve while the run holds it
+    character(len=:), allocatable :: lock      !< OUTBOX/fracas.lock, held (flock) by the running run
     type(postpro_t) :: pp
     integer(i8) :: last_flush = 0
     !> CPU time spent writing (so that a loaded machine does not inflate it), and
@@ -75,12 +84,22 @@ module fracas_output
 
 contains
 
-  !> Prepare OUT_DIR for the run of DECK (the scene SC built from it): clear
-  !> or refuse the results of an earlier run (see the module comment), create
-  !> OUTBOX/ (and DISPLAY/ if output_vtk_every > 0, POSTPRO/ if POSTPRO.DAT
-  !> asks for files), open OUTBOX/fracas.h5 and write what the run is.
-  subroutine output_open(o, sc, deck, out_dir, overwrite)
+  !> The checks of the output requests against the scene (POSTPRO.DAT's
+  !> commands and node sets), before anything is written: --check runs them.
+  subroutine output_prepare(o, sc, deck)
     type(output_t), intent(out) :: o
+    type(scene_t), intent(in) :: sc
+    type(deck_t), intent(in) :: deck
+    call postpro_prepare(o%pp, deck%postpro, deck%run%nlgs_check, sc%meshes)
+  end subroutine output_prepare
+
+  !> Prepare OUT_DIR for the run of DECK (the scene SC built from it; O from
+  !> output_prepare): clear or refuse the results of an earlier run (see the
+  !> module comment), create OUTBOX/ (and DISPLAY/ if output_vtk_every > 0,
+  !> POSTPRO/ if POSTPRO.DAT asks for files), open OUTBOX/fracas.h5 and write
+  !> what the run is.
+  subroutine output_open(o, sc, deck, out_dir, overwrite)
+    type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
     type(deck_t), intent(in) :: deck
     character(len=*), intent(in) :: out_dir
@@ -93,11 +112,12 @@ contains
     with_vtk = deck%run%output_vtk_every > 0
     o%disk_points = deck%run%output_vtk_disks /= 'polygons'
     o%vtk_single = deck%run%output_vtk_precision /= 'double'
-    call clear_earlier_results(out_dir, overwrite, with_vtk)
+    call refuse_earlier_results(out_dir, overwrite)
     call make_dir(o%outbox, parents=.true.)
+    call lock_output(o, out_dir)
+    call clear_earlier_results(out_dir, with_vtk)
+    call hold_reserve(o)
     if (with_vtk) then
-      call make_dir(o%display, parents=.true.)
-      call pvd_init(o%pvd, o%display//'/fracas.pvd')
       k = 0
       if (o%disk_points .and. any(sc%tactors%kind(1:sc%tactors%n) == tk_disk)) then
         o%part_disks = k
@@ -120,7 +140,10 @@ contains
       o%part_contacts = k
     end if
 
-    call results_open(o%h5, o%outbox//'/fracas.h5', overwrite, deck%case_dir, sc%h, sc%theta, series_names, &
+    ! Created as fracas.h5.part and renamed once its description is on disk: a
+    ! fracas.h5 is valid from its first byte (a kill before leaves a .part,
+    ! removed by the next run).
+    call results_open(o%h5, o%outbox//'/fracas.h5.part', overwrite, deck%case_dir, sc%h, sc%theta, series_names, &
                       version=version_string)
     o%h5_open = .true.
     call h5_write_attr(o%h5%fid, 'units', units_statement)
@@ -136,10 +159,32 @@ contains
     call write_run_group(o, deck)
     call write_contactors_group(o, sc)
     call results_flush(o%h5)
+    call results_rename(o%h5, o%outbox//'/fracas.h5')
+    if (with_vtk) then
+      call make_dir(o%display, parents=.true.)
+      call pvd_init(o%pvd, o%display//'/fracas.pvd')
+    end if
 
-    call postpro_open(o%pp, deck%postpro, out_dir, deck%run%nlgs_check, sc%meshes)
+    call postpro_open(o%pp, out_dir)
     call system_clock(o%last_flush)
   end subroutine output_open
+
+  !> Write OUTBOX/fracas.h5.reserve (reserve_bytes of zeros).
+  subroutine hold_reserve(o)
+    type(output_t), intent(inout) :: o
+    integer :: u, ios, k
+    character(len=65536) :: zeros
+    o%reserve = o%outbox//'/fracas.h5.reserve'
+    zeros = repeat(achar(0), len(zeros))
+    open (newunit=u, file=o%reserve, status='replace', access='stream', form='unformatted', action='write', &
+          iostat=ios)
+    if (ios /= 0) call fatal('cannot open '//o%reserve//' for writing')
+    do k = 1, reserve_bytes / len(zeros)
+      write (u, iostat=ios) zeros
+      if (ios /= 0) exit
+    end do
+    call close_written(u, o%reserve)
+  end subroutine hold_reserve
 
   !> /run: the run control the run used (every COMMAND.DAT keyword, after the
   !> --set settings), where it came from, and the settings themselves.
@@ -257,14 +302,26 @@ contains
     end associate
   end subroutine write_contactors_group
 
-  !> Refuse to start where results of an earlier run lie, or remove them
-  !> (overwrite); remove the '.part' files of a killed run either way.
-  subroutine clear_earlier_results(out_dir, overwrite, with_vtk)
+  !> Take OUTBOX/fracas.lock for the run (an flock, released when the process
+  !> ends however it ends): two runs never write into the same folder.
+  subroutine lock_output(o, out_dir)
+    type(output_t), intent(inout) :: o
     character(len=*), intent(in) :: out_dir
-    logical, intent(in) :: overwrite, with_vtk
+    integer :: stat
+    o%lock = o%outbox//'/fracas.lock'
+    call lock_file(o%lock, stat)
+    if (stat == 2) call fatal('another run is writing into '//trim(out_dir)//' ('//o%lock//' is locked by it): '// &
+      'wait for it to end, or write elsewhere with --output DIR')
+    if (stat /= 0) call fatal('cannot open '//o%lock//' (is '//o%outbox//' writable?)')
+  end subroutine lock_output
+
+  !> Refuse to start where results of an earlier run lie (unless overwrite).
+  subroutine refuse_earlier_results(out_dir, overwrite)
+    character(len=*), intent(in) :: out_dir
+    logical, intent(in) :: overwrite
     character(len=7), parameter :: dirs(3) = [character(len=7) :: 'OUTBOX', 'DISPLAY', 'POSTPRO']
     type(name_t), allocatable :: names(:)
-    character(len=:), allocatable :: found, path, base
+    character(len=:), allocatable :: found, path
     integer :: d, k, nfound
     found = ''
     nfound = 0
@@ -274,6 +331,7 @@ contains
       call list_dir(path, names)
       do k = 1, size(names)
         if (.not. output_owns(trim(dirs(d)), names(k)%s)) cycle
+        if (names(k)%s == 'fracas.h5.reserve') cycle   ! space held by a killed run, not a result
         nfound = nfound + 1
         if (nfound <= 3) found = found//', '//trim(dirs(d))//'/'//names(k)%s
       end do
@@ -281,6 +339,17 @@ contains
     if (nfound > 0 .and. .not. overwrite) call fatal('results of an earlier run in '//trim(out_dir)//': '// &
       found(3:)//merge(', ...', '     ', nfound > 3)//' ('//itoa(nfound)//' files). Pass --overwrite to '// &
       'remove them all and run again, or --output DIR to write elsewhere')
+  end subroutine refuse_earlier_results
+
+  !> Remove the results of an earlier run (the caller has refused them
+  !> unless overwrite) and the '.part' files of a killed run.
+  subroutine clear_earlier_results(out_dir, with_vtk)
+    character(len=*), intent(in) :: out_dir
+    logical, intent(in) :: with_vtk
+    character(len=7), parameter :: dirs(3) = [character(len=7) :: 'OUTBOX', 'DISPLAY', 'POSTPRO']
+    type(name_t), allocatable :: names(:)
+    character(len=:), allocatable :: path, base
+    integer :: d, k
     do d = 1, size(dirs)
       path = trim(out_dir)//'/'//trim(dirs(d))
       if (.not. dir_exists(path)) cycle
@@ -310,8 +379,8 @@ contains
     output_owns = .false.
     select case (dir)
     case ('OUTBOX')
-      output_owns = name == 'fracas.h5' .or. counted(name, 'DOF.OUT.') .or. counted(name, 'Vloc_Rloc.OUT.') &
-                    .or. counted(name, 'GPV.OUT.')
+      output_owns = name == 'fracas.h5' .or. name == 'fracas.h5.reserve' .or. counted(name, 'DOF.OUT.') .or. &
+                    counted(name, 'Vloc_Rloc.OUT.') .or. counted(name, 'GPV.OUT.')
     case ('DISPLAY')
       if (name == 'fracas.pvd') then
         output_owns = .true.
@@ -985,6 +1054,8 @@ contains
     real(wp) :: per_family(sc%cracks%nfamilies)
     integer :: nbroken, ndamaged
     real(wp) :: t0
+    real(wp) :: row(n_series)
+    integer :: k
     if (.not. o%h5_open) return
     call cpu_time(t0)
     call cracks_lengths(sc%cracks, crack, damaged, per_family, nbroken, ndamaged)
@@ -995,7 +1066,7 @@ contains
     wsupports = sc%work_supports + sc%meshes%work_supports
     balance = rep%kinetic + sc%meshes%elastic + sc%meshes%plastic_work + sc%cohesive_energy - sc%kinetic0 - &
               (wgrav + wforces + wsupports - sc%dissipated)
-    call results_append_step(o%h5, [real(sc%step, wp), sc%time, real(rep%contacts, wp), &
+    row = [real(sc%step, wp), sc%time, real(rep%contacts, wp), &
       real(rep%nlgs%nactive, wp), real(rep%nlgs%sweeps, wp), merge(1.0_wp, 0.0_wp, rep%nlgs%converged .and. rep%newton_converged), &
       rep%nlgs%residual, rep%nlgs%residual_onepq, rep%nlgs%quad_dv, rep%nlgs%maxm_dv, rep%nlgs%mean_dvor, &
       rep%kinetic, wgrav, wforces, wsupports, sc%dissipated, sc%cohesive_energy, &
@@ -1003,7 +1074,15 @@ contains
       rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
       sc%meshes%plastic_work, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
       real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds, &
-      real(rep%nlgs%updates, wp), rep%velocity_seconds])
+      real(rep%nlgs%updates, wp), rep%velocity_seconds]
+    ! A sound state can still give non-finite diagnostics (an NLGS residual of a
+    ! law stiffness near the largest double): the step's results are nonsense.
+    do k = 1, n_series
+      if (.not. ieee_is_finite(row(k))) call fatal('the series value '//trim(series_names(k))//' of the step is '// &
+        rtoa(row(k))//' (law parameters, masses or velocities beyond double precision?). The run stops; '// &
+        'fracas.h5 holds the steps before it and is marked incomplete')
+    end do
+    call results_append_step(o%h5, row)
     call postpro_step(o%pp, sc, rep)
     call flush_if_due(o)
     call clocked(o, k_series, t0)
@@ -1059,6 +1138,18 @@ contains
     type(output_t), intent(inout) :: o
     logical, intent(in), optional :: complete
     character(len=*), intent(in), optional :: end_reason
+    integer :: stat
+    if (allocated(o%reserve)) then
+      call remove_file(o%reserve, stat)
+      deallocate (o%reserve)
+    end if
+    ! Still held until the process ends; a run that starts now takes a new file.
+    if (allocated(o%lock)) then
+      call remove_file(o%lock, stat)
+      deallocate (o%lock)
+    end if
+    ! An error while closing stops the run; its clean-up closes again with
+    ! complete = 0, going on past HDF5 errors (fracas_h5: check).
     if (o%h5_open) call results_close(o%h5, complete, end_reason)
     o%h5_open = .false.
     call postpro_close(o%pp)

@@ -31,14 +31,15 @@ module fracas_postpro
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, warn, input_error
   use fracas_deck, only: postpro_input_t
-  use fracas_files, only: make_dir
+  use fracas_files, only: make_dir, check_written, close_written
   use fracas_ids, only: st_noctc
   use fracas_datbox_text, only: itoa, parse_int
   use fracas_scene, only: scene_t, step_report_t, scene_body_impulses
   use fracas_mailx, only: mailx_t
   implicit none
   private
-  public :: postpro_t, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns
+  public :: postpro_t, postpro_prepare, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns, &
+            postpro_sums, postpro_restore_sums
 
   integer, parameter :: pp_solver = 1, pp_body = 2, pp_torque = 3, pp_dissipated = 4, pp_dep = 5, pp_fint = 6
 
@@ -66,13 +67,13 @@ module fracas_postpro
 
 contains
 
-  !> Open OUT_DIR/POSTPRO/ and its files for the commands of POSTPRO.DAT
-  !> (none: nothing is written). check: the NLGS norm (Quad, Maxm, QM/16);
-  !> meshes: the meshed bodies (for the node sets).
-  subroutine postpro_open(pp, commands, out_dir, check, meshes)
+  !> Read and check the commands of POSTPRO.DAT against the scene (errors at
+  !> their lines; run by --check too, before anything is written). check: the
+  !> NLGS norm (Quad, Maxm, QM/16); meshes: the meshed bodies (for the node sets).
+  subroutine postpro_prepare(pp, commands, check, meshes)
     type(postpro_t), intent(out) :: pp
     type(postpro_input_t), intent(in) :: commands(:)
-    character(len=*), intent(in) :: out_dir, check
+    character(len=*), intent(in) :: check
     type(mailx_t), intent(in) :: meshes
     type(pp_command_t), allocatable :: cmds(:)
     integer :: k, n, j
@@ -124,6 +125,15 @@ contains
       n = j
     end if
     pp%cmds = cmds(1:n)
+  end subroutine postpro_prepare
+
+  !> Open OUT_DIR/POSTPRO/ and the files of the prepared commands (none:
+  !> nothing is written).
+  subroutine postpro_open(pp, out_dir)
+    type(postpro_t), intent(inout) :: pp
+    character(len=*), intent(in) :: out_dir
+    integer :: k, j, n
+    n = size(pp%cmds)
     pp%active = n > 0
     if (.not. pp%active) return
     pp%dir = trim(out_dir)//'/POSTPRO'
@@ -260,8 +270,13 @@ contains
     subroutine next_line(what)
       character(len=*), intent(in) :: what
       line = line + 1
-      if (line > size(c%params)) call input_error(c%src%file, c%src%line, 1, 'NEW MECAx SETS: expected '//what// &
-                                                  ' after line '//itoa(c%src%line + line - 1))
+      ! Located at the command's last line (the set count promised more lines).
+      if (line > size(c%params)) then
+        if (size(c%params) == 0) call input_error(c%src%file, c%src%line, 1, 'NEW MECAx SETS: expected '//what// &
+                                                  ' after this command')
+        call input_error(c%src%file, c%param_lines(size(c%params)), 1, 'NEW MECAx SETS: expected '//what// &
+                         ' after this line (the sets counted at line '//itoa(c%param_lines(1))//' need more)')
+      end if
     end subroutine next_line
 
     integer function next_int(what, lowest) result(v)
@@ -289,14 +304,31 @@ contains
     end associate
   end function step_dissipation
 
-  !> Hand the lines written so far to the system (a killed run keeps them).
+  !> The running sums of the commands (DISSIPATED ENERGY's cumulative column),
+  !> for restart points.
+  function postpro_sums(pp) result(s)
+    type(postpro_t), intent(in) :: pp
+    real(wp), allocatable :: s(:)
+    s = [pp%dissipated]
+  end function postpro_sums
+
+  !> Continue the running sums of a restart point (none in files written before
+  !> they were kept: the sums start again from 0, as they did).
+  subroutine postpro_restore_sums(pp, s)
+    type(postpro_t), intent(inout) :: pp
+    real(wp), intent(in) :: s(:)
+    if (size(s) >= 1) pp%dissipated = s(1)
+  end subroutine postpro_restore_sums
+
+  !> Hand the lines written so far to the system (a killed run keeps them),
+  !> and stop the run if they did not reach the disk (fracas_files).
   subroutine postpro_flush(pp)
     type(postpro_t), intent(inout) :: pp
     integer :: k, j
     if (.not. pp%active) return
     do k = 1, size(pp%cmds)
       do j = 1, size(pp%cmds(k)%units)
-        flush (pp%cmds(k)%units(j))
+        call check_written(pp%cmds(k)%units(j), unit_file(pp%cmds(k)%units(j)))
       end do
     end do
   end subroutine postpro_flush
@@ -305,13 +337,22 @@ contains
     type(postpro_t), intent(inout) :: pp
     integer :: k, j
     if (.not. pp%active) return
+    pp%active = .false.   ! first: a write error stops the run, whose clean-up closes again
     do k = 1, size(pp%cmds)
       do j = 1, size(pp%cmds(k)%units)
-        close (pp%cmds(k)%units(j))
+        call close_written(pp%cmds(k)%units(j), unit_file(pp%cmds(k)%units(j)))
       end do
     end do
-    pp%active = .false.
   end subroutine postpro_close
+
+  !> The file open on unit u.
+  function unit_file(u) result(path)
+    integer, intent(in) :: u
+    character(len=:), allocatable :: path
+    character(len=4096) :: name
+    inquire (unit=u, name=name)
+    path = trim(name)
+  end function unit_file
 
   !> True for the names of the files a run may write in POSTPRO/ (for
   !> clearing or refusing the results of an earlier run).

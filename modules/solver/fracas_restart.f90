@@ -6,10 +6,15 @@
 !> between rough detections, step counters, time, the NLGS shuffle generator
 !> and the energy audit.
 module fracas_restart
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal
-  use fracas_strings, only: itoa
+  use fracas_strings, only: itoa, rtoa
+  use fracas_ids, only: n_inter, n_status
+  use fracas_contacts, only: n_internals
+  use fracas_bulk, only: gp_size
   use fracas_scene, only: scene_t
+  use fracas_state_guard, only: scene_fault
   use fracas_restart_h5, only: restart_state_t, restart_h5_write, restart_h5_read
   use fracas_results_h5, only: results_h5_t
   use fracas_mailx, only: mailx_restore_state
@@ -21,10 +26,11 @@ contains
 
   !> Write the scene's restart point (after a step) into the open results file.
   !> vtk_frames, outbox_writes: output files written so far (their numbering continues).
-  subroutine restart_save(r, sc, vtk_frames, outbox_writes)
+  subroutine restart_save(r, sc, vtk_frames, outbox_writes, postpro_sums)
     type(results_h5_t), intent(in) :: r
     type(scene_t), intent(in) :: sc
     integer, intent(in) :: vtk_frames, outbox_writes
+    real(wp), intent(in) :: postpro_sums(:)   !< running sums of the POSTPRO commands
     type(restart_state_t) :: st
     integer :: n
     if (.not. r%is_open) return
@@ -33,6 +39,7 @@ contains
     st%time = sc%time
     st%vtk_frames = vtk_frames
     st%outbox_writes = outbox_writes
+    st%postpro_sums = postpro_sums
     st%rng_state = sc%solver%rng%state
     st%energies = [sc%kinetic0, sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, &
                    sc%cohesive_energy, sc%damage_dissipated]
@@ -89,38 +96,20 @@ contains
 
   !> Put the scene built from the deck into the state of the restart point of
   !> step `step` (< 0: the latest) of PATH. The deck must describe the same
-  !> bodies and contactors. Returns the output counters to continue from.
-  subroutine restart_load(path, step, sc, vtk_frames, outbox_writes)
+  !> bodies and contactors. Returns the output counters and the POSTPRO
+  !> running sums to continue from.
+  subroutine restart_load(path, step, sc, vtk_frames, outbox_writes, postpro_sums)
     character(len=*), intent(in) :: path
     integer, intent(in) :: step
     type(scene_t), intent(inout) :: sc
     integer, intent(out) :: vtk_frames, outbox_writes
+    real(wp), allocatable, intent(out) :: postpro_sums(:)
     type(restart_state_t) :: st
     integer :: n
+    character(len=:), allocatable :: fault
     call restart_h5_read(path, step, st)
-    if (size(st%x, 2) /= sc%bodies%n .or. st%ntactors /= sc%tactors%n) &
-      call fatal('restart from '//trim(path)//': the restart point has '//itoa(size(st%x, 2))//' bodies and '// &
-                 itoa(st%ntactors)//' contactors, the deck '//itoa(sc%bodies%n)//' and '//itoa(sc%tactors%n)// &
-                 ' (restart with the deck of the run that wrote it)')
-    if (size(st%first) /= sc%tactors%n + 1 .and. size(st%first) /= 0) &
-      call fatal('restart from '//trim(path)//': contact history does not match the contactors')
-    if (sc%contacts%with_cohesion .neqv. allocated(st%internals)) &
-      call fatal('restart from '//trim(path)//': the deck and the restart point disagree on cohesive laws')
-    if (allocated(st%mesh_x) .neqv. sc%meshes%nnodes > 0) &
-      call fatal('restart from '//trim(path)//': the deck and the restart point disagree on meshed bodies')
-    if (allocated(st%mesh_x)) then
-      if (size(st%mesh_x, 2) /= sc%meshes%nnodes .or. size(st%mesh_gp, 2) /= sc%meshes%ngp) &
-        call fatal('restart from '//trim(path)//': the restart point has '//itoa(size(st%mesh_x, 2))// &
-                   ' mesh nodes and '//itoa(size(st%mesh_gp, 2))//' Gauss points, the deck '// &
-                   itoa(sc%meshes%nnodes)//' and '//itoa(sc%meshes%ngp))
-      call mailx_restore_state(sc%meshes, st%mesh_x, st%mesh_v, st%mesh_gp, st%mesh_fint, st%mesh_energies)
-    end if
-    if (allocated(st%crack_beta) .neqv. sc%cracks%npts > 0) &
-      call fatal('restart from '//trim(path)//': the deck and the restart point disagree on cohesive interfaces')
+    call validate_point(st, sc)
     if (allocated(st%crack_beta)) then
-      if (size(st%crack_beta) /= sc%cracks%npts .or. size(st%crack_broken_step) /= sc%cracks%nedges .or. &
-          size(st%crack_flags, 1) /= 4 .or. size(st%crack_family_damage) /= sc%cracks%nfamilies) &
-        call fatal('restart from '//trim(path)//': cohesive interfaces do not match the deck')
       sc%cracks%pt_beta = st%crack_beta
       sc%cracks%pt_glued = st%crack_flags(1, :) == 1
       sc%cracks%pt_seen = st%crack_flags(2, :) == 1
@@ -170,7 +159,150 @@ contains
       d%pair_law = st%pairs(4, :)
       d%pair_alert = st%pair_alert
     end associate
+    ! The state the point holds must pass the state guard, as after any step
+    ! (finite but absurd values: a body or node beyond what double precision
+    ! resolves at its size), before the meshes are assembled from it.
+    if (allocated(st%mesh_x)) then
+      sc%meshes%x = st%mesh_x
+      sc%meshes%v = st%mesh_v
+      sc%meshes%gp = st%mesh_gp
+    end if
+    fault = scene_fault(sc)
+    if (len(fault) > 0) call fatal('restart point '//st%where//': the state it holds is not sound: '//fault)
+    if (allocated(st%mesh_x)) &
+      call mailx_restore_state(sc%meshes, st%mesh_x, st%mesh_v, st%mesh_gp, st%mesh_fint, st%mesh_energies)
     vtk_frames = st%vtk_frames
     outbox_writes = st%outbox_writes
+    postpro_sums = st%postpro_sums
   end subroutine restart_load
+
+  !> Shapes, ranges, finite values and indices of every dataset of a restart
+  !> point against the scene built from the deck, before any is used: an error
+  !> names the dataset ('PATH:/restart/<step>/history/an: ...'). A point of
+  !> another deck is reported by the first dataset that does not fit.
+  subroutine validate_point(st, sc)
+    type(restart_state_t), intent(in) :: st
+    type(scene_t), intent(in) :: sc
+    integer :: nt, n, k
+    nt = sc%tactors%n
+    if (st%step < 0 .or. st%steps_done < 0 .or. st%steps_done > st%step) &
+      call bad('', 'step '//itoa(st%step)//' and steps_done '//itoa(st%steps_done)//' are not 0 <= steps_done <= step')
+    if (.not. ieee_is_finite(st%time)) call bad('', 'time is '//rtoa(st%time))
+    if (st%vtk_frames < 0 .or. st%outbox_writes < 0) call bad('', 'negative output counters')
+    if (size(st%x, 2) /= sc%bodies%n .or. st%ntactors /= nt) &
+      call bad('', 'the restart point has '//itoa(size(st%x, 2))//' bodies and '//itoa(st%ntactors)// &
+               ' contactors, the deck '//itoa(sc%bodies%n)//' and '//itoa(nt)// &
+               ' (restart with the deck of the run that wrote it)')
+    call real2('X', st%x, 3, sc%bodies%n)
+    call real2('V', st%v, 3, sc%bodies%n)
+    call real1('energies', st%energies, size(st%energies))
+    ! postpro_sums: DISSIPATED ENERGY's running sum (fracas_postpro), or none in older files.
+    if (size(st%postpro_sums) > 1) call bad('postpro_sums', itoa(size(st%postpro_sums))//' values, expected 1')
+    call real1('postpro_sums', st%postpro_sums, size(st%postpro_sums))
+    ! Contact history: first is CSR over the candidate contactors (empty: none kept).
+    n = size(st%inter)
+    if (size(st%first) /= 0) then
+      call int1('history/first', st%first, nt + 1, 1, n + 1)
+      if (st%first(1) /= 1 .or. st%first(nt + 1) /= n + 1 .or. any(st%first(2:) < st%first(:nt))) &
+        call bad('history/first', 'not a non-decreasing index from 1 to '//itoa(n + 1))
+    else if (n /= 0) then
+      call bad('history/first', 'empty, with '//itoa(n)//' contacts in history/inter')
+    end if
+    call int1('history/inter', st%inter, n, 1, n_inter)
+    call int1('history/an', st%an, n, 1, nt)
+    call int1('history/sub', st%sub, n, 0, huge(1))
+    call int1('history/status', st%status, n, 1, n_status)
+    call real2('history/force', st%force, 2, n)
+    call real2('history/point', st%point, 2, n)
+    if (sc%contacts%with_cohesion .neqv. allocated(st%internals)) &
+      call bad('history/internals', 'the deck and the restart point disagree on cohesive laws')
+    if (allocated(st%internals)) call real2('history/internals', st%internals, n_internals, n)
+    ! Broad-phase pairs: candidate, antagonist, interaction type, law.
+    n = size(st%pair_alert)
+    if (size(st%pairs, 1) /= 4 .or. size(st%pairs, 2) /= n) call bad('pairs', 'shape ('//itoa(size(st%pairs, 1))// &
+      ','//itoa(size(st%pairs, 2))//'), expected (4,'//itoa(n)//') as pair_alert')
+    call int1('pairs', st%pairs(1, :), n, 1, nt, 'candidate ')
+    call int1('pairs', st%pairs(2, :), n, 1, nt, 'antagonist ')
+    call int1('pairs', st%pairs(3, :), n, 1, n_inter, 'interaction type ')
+    call int1('pairs', st%pairs(4, :), n, 1, size(sc%laws), 'law ')
+    call real1('pair_alert', st%pair_alert, n)
+    if (any(st%pair_alert < 0.0_wp)) call bad('pair_alert', 'a negative alert distance')
+    if (allocated(st%mesh_x) .neqv. sc%meshes%nnodes > 0) &
+      call bad('mesh', 'the deck and the restart point disagree on meshed bodies')
+    if (allocated(st%mesh_x)) then
+      call real2('mesh/X', st%mesh_x, 2, sc%meshes%nnodes)
+      call real2('mesh/V', st%mesh_v, 2, sc%meshes%nnodes)
+      call real2('mesh/gp', st%mesh_gp, gp_size, sc%meshes%ngp)
+      ! Gauss-point values are squared (von Mises, energies): beyond sqrt(huge) they overflow.
+      if (any(abs(st%mesh_gp) > sqrt(huge(1.0_wp)))) call bad('mesh/gp', 'a value beyond '// &
+        rtoa(sqrt(huge(1.0_wp)))//' (its square overflows double precision)')
+      call real2('mesh/fint', st%mesh_fint, 2, sc%meshes%nnodes)
+      call real1('mesh/energies', st%mesh_energies, 5)
+    end if
+    if (allocated(st%crack_beta) .neqv. sc%cracks%npts > 0) &
+      call bad('cracks', 'the deck and the restart point disagree on cohesive interfaces')
+    if (allocated(st%crack_beta)) then
+      n = sc%cracks%npts
+      call real1('cracks/beta', st%crack_beta, n)
+      if (any(st%crack_beta < 0.0_wp .or. st%crack_beta > 1.0_wp)) call bad('cracks/beta', 'a damage outside [0, 1]')
+      if (size(st%crack_flags, 1) /= 4 .or. size(st%crack_flags, 2) /= n) call bad('cracks/flags', 'shape ('// &
+        itoa(size(st%crack_flags, 1))//','//itoa(size(st%crack_flags, 2))//'), expected (4,'//itoa(n)//')')
+      call int1('cracks/flags', st%crack_flags(1, :), n, 0, 1, 'glued flag ')
+      call int1('cracks/flags', st%crack_flags(2, :), n, 0, 1, 'seen flag ')
+      call int1('cracks/flags', st%crack_flags(3, :), n, 0, sc%meshes%n, 'partner body ')
+      call int1('cracks/flags', st%crack_flags(4, :), n, 0, nt, 'antagonist contactor ')
+      call int1('cracks/broken_step', st%crack_broken_step, sc%cracks%nedges, 0, st%step)
+      call real1('cracks/family_damage', st%crack_family_damage, sc%cracks%nfamilies)
+    end if
+
+  contains
+
+    subroutine bad(dataset, what)
+      character(len=*), intent(in) :: dataset, what
+      if (len(dataset) > 0) then
+        call fatal('restart point '//st%where//'/'//dataset//': '//what)
+      else
+        call fatal('restart point '//st%where//': '//what)
+      end if
+    end subroutine bad
+
+    subroutine real1(dataset, a, n)
+      character(len=*), intent(in) :: dataset
+      real(wp), intent(in) :: a(:)
+      integer, intent(in) :: n
+      integer :: i
+      if (size(a) /= n) call bad(dataset, itoa(size(a))//' values, expected '//itoa(n))
+      do i = 1, n
+        if (.not. ieee_is_finite(a(i))) call bad(dataset, 'value '//itoa(i)//' is '//rtoa(a(i)))
+      end do
+    end subroutine real1
+
+    subroutine real2(dataset, a, n1, n2)
+      character(len=*), intent(in) :: dataset
+      real(wp), intent(in) :: a(:, :)
+      integer, intent(in) :: n1, n2
+      integer :: j
+      if (size(a, 1) /= n1 .or. size(a, 2) /= n2) call bad(dataset, 'shape ('//itoa(size(a, 2))//', '// &
+        itoa(size(a, 1))//') as h5py shows it, expected ('//itoa(n2)//', '//itoa(n1)//')')
+      do j = 1, n2
+        if (.not. all(ieee_is_finite(a(:, j)))) call bad(dataset, 'row '//itoa(j - 1)//' (from 0) is not finite')
+      end do
+    end subroutine real2
+
+    !> what: the column's meaning for a 2-D dataset ('candidate ' of pairs).
+    subroutine int1(dataset, a, n, lo, hi, what)
+      character(len=*), intent(in) :: dataset
+      integer, intent(in) :: a(:), n, lo, hi
+      character(len=*), intent(in), optional :: what
+      character(len=:), allocatable :: w
+      integer :: i
+      w = ''
+      if (present(what)) w = what
+      if (size(a) /= n) call bad(dataset, itoa(size(a))//' '//w//'values, expected '//itoa(n))
+      do i = 1, n
+        if (a(i) < lo .or. a(i) > hi) call bad(dataset, w//'value '//itoa(i - 1)//' (from 0) is '//itoa(a(i))// &
+          ', outside '//itoa(lo)//' .. '//itoa(hi))
+      end do
+    end subroutine int1
+  end subroutine validate_point
 end module fracas_restart

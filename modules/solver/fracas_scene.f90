@@ -263,7 +263,7 @@ contains
   subroutine scene_step(sc, rep)
     type(scene_t), intent(inout) :: sc
     type(step_report_t), intent(out) :: rep
-    integer :: k, pos, nover
+    integer :: k, pos, nover, checks, checks_left
     logical :: pair_known, swapped
     integer(i8) :: t0, t1, t2, rate
     real(wp) :: margin, vmax, gap_end, dx(3), stored, coh_work, released, dissipated_all
@@ -336,9 +336,20 @@ contains
       call lap(rep%solve_seconds)
       rep%velocity_seconds = rep%nlgs%velocity_seconds
       ! Nonlinear meshed bodies: Newton iterations, the contact problem solved
-      ! in each (warm-started from the last), as LMGC90.
+      ! in each (warm-started from the last), as LMGC90. The step's NLGS sweep
+      ! budget (sweeps_per_check x max_checks, what --check bounds) is shared by
+      ! its Newton iterations: each solve gets the checks left, and a step that
+      ! has used them all ends unconverged (it used to repeat the whole budget at
+      ! every iteration, up to newton_max_iterations + 1 times).
+      checks = sc%solver%s%max_checks
       do
         if (mailx_converged(m, sc%newton_tolerance, sc%newton_max_iterations)) exit
+        checks_left = checks - (rep%nlgs%sweeps + sc%solver%s%sweeps_per_check - 1) / sc%solver%s%sweeps_per_check
+        if (checks_left < 1) then
+          rep%nlgs%converged = .false.
+          exit
+        end if
+        sc%solver%s%max_checks = checks_left
         call lap(rep%bodies_seconds)
         b%v = b%vfree
         call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h)
@@ -348,7 +359,9 @@ contains
         rep%nlgs%sweeps = rep%nlgs%sweeps + newton_rep%sweeps
         rep%nlgs%updates = rep%nlgs%updates + newton_rep%updates
         rep%velocity_seconds = rep%velocity_seconds + newton_rep%velocity_seconds
+        rep%nlgs%converged = newton_rep%converged
       end do
+      sc%solver%s%max_checks = checks
       call lap(rep%bodies_seconds)
       rep%newton_iterations = m%iterations
       rep%newton_converged = m%newton_converged

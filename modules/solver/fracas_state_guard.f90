@@ -3,24 +3,32 @@
 !>
 !> - scene_check_start (with --check and before a run): every body has a
 !>   mass and inertia that are normal numbers, a position and an initial speed
-!>   that double precision resolves at the body's size, every driven dof an
-!>   imposed value that keeps it so over the run, and alert distances in that
-!>   range too. Errors name the deck line.
-!> - scene_fault (after every step, O(bodies + contacts)): positions,
-!>   velocities, reactions, cohesive state and energy audit finite, and no body
-!>   beyond the resolvable range. Returns a message naming the body or contact ('' if sound).
+!>   (every node's, for a meshed body) that double precision resolves at the
+!>   body's size, every driven dof (of a rigid body or a mesh node) an imposed
+!>   value that keeps it so over the run, gravity that does not move a body
+!>   beyond it by the end of the run even in free fall, and alert distances in
+!>   that range too. Errors name the deck line.
+!> - scene_fault (after every step, O(bodies + nodes + Gauss points + contacts)):
+!>   positions, velocities, Gauss-point states, reactions, cohesive state and
+!>   energy audit finite, and no body (no node of a meshed body) beyond the
+!>   resolvable range: a diverged NLGS step lands there. Returns a message
+!>   naming the body (node, Gauss point) or contact ('' if sound).
 !>
 !> Resolvable range: a coordinate x is stored to about |x| eps; when that
 !> exceeds a thousandth of the body's size, contact geometry at the body is
 !> meaningless. So |x| and the distance travelled in one step must stay below
-!> resolvable_length(size) = 1e-3 size / eps (4.5e11 m for a 0.1 m disk).
+!> resolvable_length(size) = 1e-3 size / eps (4.5e11 m for a 0.1 m disk). The
+!> size of a meshed body is half the diagonal of the box around its reference
+!> nodes (mailx_radius), that of an exploded mesh's body its element's.
 module fracas_state_guard
   use fracas_kinds, only: wp
   use fracas_deck, only: deck_t, source_t
   use fracas_errors, only: input_error
   use fracas_ids, only: inter_names, bm_mesh
-  use fracas_drives, only: drive_value
+  use fracas_drives, only: drive_t, drive_value
   use fracas_rbdy2, only: rbdy2_kinetic_energy
+  use fracas_mailx, only: mailx_radius
+  use fracas_bulk, only: gp_stress, gp_strain, gp_plastic_strain, gp_p
   use fracas_scene, only: scene_t
   use fracas_strings, only: itoa, rtoa
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -58,6 +66,10 @@ contains
         call check_mass(k)
         call check_state(k)
       end do
+      do k = 1, sc%meshes%n
+        call check_mesh_state(k)
+      end do
+      call check_gravity()
       do k = 1, size(deck%driven)
         call check_drive(k)
       end do
@@ -81,7 +93,8 @@ contains
       m = sc%bodies%mass(1, k)
       inertia = sc%bodies%mass(3, k)
       if (.not. (normal_positive(m) .and. normal_positive(inertia))) &
-        call input_error(deck%bodies(k)%src%file, deck%bodies(k)%src%line, 0, 'body '//itoa(k)// &
+        call input_error(deck%bodies(sc%rigid_deck(k))%src%file, deck%bodies(sc%rigid_deck(k))%src%line, 0, &
+          'body '//itoa(k)// &
           ': its mass ('//rtoa(m)//') or rotational inertia ('//rtoa(inertia)//') is not a normal positive '// &
           "number: density of material '"//trim(deck%bodies(k)%behav)//"' times its area (radius "// &
           rtoa(sc%bodies%avrd(k))//') underflows or overflows double precision')
@@ -96,10 +109,7 @@ contains
       lim = resolvable_length(sc%bodies%avrd(k))
       pos = maxval(abs(sc%bodies%ref(1:2, k) + sc%bodies%x(1:2, k)))
       moved = sc%h * speed_of(sc%bodies%v(:, k), sc%bodies%avrd(k))
-      src = deck%bodies(k)%src
-      do j = 1, size(deck%dof_ini)
-        if (deck%dof_ini(j)%body == k) src = deck%dof_ini(j)%src
-      end do
+      src = initial_state_source(k, 'RBDY2')
       if (.not. (pos <= lim)) call input_error(src%file, src%line, 0, 'body '//itoa(k)//' is at '//rtoa(pos)// &
         ' from the origin: beyond '//rtoa(lim)//', the largest coordinate at which double precision resolves '// &
         'a body of radius '//rtoa(sc%bodies%avrd(k))//' to a thousandth of its size')
@@ -108,51 +118,154 @@ contains
         ' (what double precision resolves at its size)')
     end subroutine check_state
 
-    !> An imposed velocity must not move its body beyond the resolvable range
-    !> in one step; an imposed force not by its velocity change over one step.
-    !> Evaluated at the start and end of the run and at the table points.
+    !> Every node of meshed body b within the resolvable range, and its
+    !> initial velocity (DOF.INI) not moving it beyond in one step.
+    subroutine check_mesh_state(b)
+      integer, intent(in) :: b
+      real(wp) :: lim, pos, moved
+      type(source_t) :: src
+      integer :: k, kpos, kv
+      associate (m => sc%meshes)
+        lim = resolvable_length(mailx_radius(m, b))
+        pos = 0.0_wp; moved = 0.0_wp; kpos = m%node_first(b); kv = kpos
+        do k = m%node_first(b), m%node_first(b + 1) - 1
+          if (.not. (maxval(abs(m%ref(:, k) + m%x(:, k))) <= pos)) then
+            pos = maxval(abs(m%ref(:, k) + m%x(:, k))); kpos = k
+          end if
+          if (.not. (sc%h * maxval(abs(m%v(:, k))) <= moved)) then
+            moved = sc%h * maxval(abs(m%v(:, k))); kv = k
+          end if
+        end do
+        src = initial_state_source(b, 'MAILx')
+        if (.not. (pos <= lim)) call input_error(src%file, src%line, 0, 'MAILx body '//itoa(b)//': node '// &
+          itoa(kpos - m%node_first(b) + 1)//' is at '//rtoa(pos)//' from the origin: beyond '//rtoa(lim)// &
+          ', the largest coordinate at which double precision resolves a body of size '// &
+          rtoa(mailx_radius(m, b))//' to a thousandth of its size')
+        if (.not. (moved <= lim)) call input_error(src%file, src%line, 0, 'MAILx body '//itoa(b)//': the initial '// &
+          'velocity of node '//itoa(kv - m%node_first(b) + 1)//' ('//vec(m%v(:, kv))//') moves it by '//rtoa(moved)// &
+          ' in one time step, beyond '//rtoa(lim)//' (what double precision resolves at the body''s size, '// &
+          rtoa(mailx_radius(m, b))//')')
+      end associate
+    end subroutine check_mesh_state
+
+    !> The deck line of a body's initial state: its DOF.INI record, else its BODIES.DAT line.
+    type(source_t) function initial_state_source(k, model) result(src)
+      integer, intent(in) :: k
+      character(len=*), intent(in) :: model
+      integer :: j
+      if (model == 'MAILx') then
+        src = deck%bodies(sc%mesh_deck(k))%src
+      else
+        src = deck%bodies(sc%rigid_deck(k))%src
+      end if
+      do j = 1, size(deck%dof_ini)
+        if (deck%dof_ini(j)%body == k .and. ((deck%dof_ini(j)%model == 'MAILx') .eqv. (model == 'MAILx'))) &
+          src = deck%dof_ini(j)%src
+      end do
+    end function initial_state_source
+
+    !> Gravity must not move the smallest body beyond the resolvable range in
+    !> one step even after falling freely for the whole run (a body held by
+    !> supports or driven dofs meets forces of the same size).
+    subroutine check_gravity()
+      real(wp) :: g, smallest, lim, reach, duration
+      integer :: b, col
+      g = maxval(abs(deck%gravity(1:2)))
+      if (g == 0.0_wp) return
+      smallest = huge(1.0_wp)
+      if (sc%bodies%n > 0) smallest = minval(sc%bodies%avrd(1:sc%bodies%n))
+      do b = 1, sc%meshes%n
+        smallest = min(smallest, mailx_radius(sc%meshes, b))
+      end do
+      if (smallest == huge(1.0_wp)) return
+      duration = sc%h * real(deck%run%number_of_steps, wp)
+      reach = sc%h * g * duration
+      lim = resolvable_length(smallest)
+      col = merge(25, 46, abs(deck%gravity(1)) >= abs(deck%gravity(2)))
+      if (deck%gravity_src%line == 0) col = 0
+      if (.not. (reach <= lim)) call input_error(deck%gravity_src%file, deck%gravity_src%line, col, 'gravity '// &
+        rtoa(g)//' moves a body falling freely for the run ('//rtoa(duration)//') by '//rtoa(reach)// &
+        ' in one time step, beyond '//rtoa(lim)//' (what double precision resolves at the size of the smallest '// &
+        'body, '//rtoa(smallest)//')')
+    end subroutine check_gravity
+
+    !> An imposed velocity must not move its body (mesh node) beyond the
+    !> resolvable range in one step; an imposed force not by its velocity
+    !> change over one step.
     subroutine check_drive(k)
       integer, intent(in) :: k
-      real(wp) :: t0, t1, vmax, lim, reach
-      integer :: ib, j
+      real(wp) :: vmax, lim, reach, mass
+      integer :: ib, node
+      character(len=:), allocatable :: what
       associate (d => deck%driven(k))
-        if (d%model /= 'RBDY2') return
         ib = d%body
-        if (ib < 1 .or. ib > sc%bodies%n) return   ! reported by the scene builder
-        t0 = sc%time
-        t1 = sc%time + sc%h * real(deck%run%number_of_steps, wp)
-        vmax = 0.0_wp
-        do j = 1, size(sc%bodies%drives)
-          associate (dr => sc%bodies%drives(j))
-            if (dr%body /= ib .or. dr%dof /= d%dof .or. (dr%is_velocity .neqv. d%kind == 'vlocy')) cycle
-            vmax = max(vmax, abs(drive_value(dr, t0)), abs(drive_value(dr, t1)))
-            if (allocated(dr%evo_v)) vmax = max(vmax, maxval(abs(dr%evo_v)))
-            if (.not. allocated(dr%evo_t)) vmax = max(vmax, (abs(dr%ct) + abs(dr%amp)) * &
-                                                      max(abs(min(1.0_wp, dr%rampi + dr%ramp * t0)), &
-                                                          abs(min(1.0_wp, dr%rampi + dr%ramp * t1))))
+        if (d%model == 'MAILx') then
+          associate (m => sc%meshes)
+            if (ib < 1 .or. ib > m%n .or. d%dof < 1 .or. d%dof > 2) return   ! reported by the mesh builder
+            node = m%node_first(ib) - 1 + d%node
+            if (d%node < 1 .or. node >= m%node_first(ib + 1)) return
+            vmax = drive_max(m%drives, node, d%dof, d%kind == 'vlocy')
+            lim = resolvable_length(mailx_radius(m, ib))
+            mass = m%mdiag(d%dof, node)
+            what = 'node '//itoa(d%node)//' of MAILx body '//itoa(ib)
           end associate
-        end do
-        lim = resolvable_length(sc%bodies%avrd(ib))
-        if (d%dof == 3) vmax = vmax * sc%bodies%avrd(ib)   ! spin: speed of the rim
+        else
+          if (ib < 1 .or. ib > sc%bodies%n) return   ! reported by the scene builder
+          vmax = drive_max(sc%bodies%drives, ib, d%dof, d%kind == 'vlocy')
+          lim = resolvable_length(sc%bodies%avrd(ib))
+          if (d%dof == 3) vmax = vmax * sc%bodies%avrd(ib)   ! spin: speed of the rim
+          mass = sc%bodies%mass(d%dof, ib)
+          what = 'body '//itoa(ib)
+        end if
         if (d%kind == 'vlocy') then
           reach = sc%h * vmax
         else
-          reach = sc%h**2 * vmax / sc%bodies%mass(d%dof, ib)
+          reach = sc%h**2 * vmax / mass
         end if
         if (.not. (reach <= lim)) call input_error(d%src%file, d%src%line, 0, 'driven '//trim(d%kind)// &
-          ' of body '//itoa(ib)//' dof '//itoa(d%dof)//' reaches '//rtoa(vmax)//' during the run: it moves the '// &
+          ' of '//what//' dof '//itoa(d%dof)//' reaches '//rtoa(vmax)//' during the run: it moves the '// &
           'body by '//rtoa(reach)//' in one time step, beyond '//rtoa(lim)//' (what double precision resolves '// &
           'at its size)')
       end associate
     end subroutine check_drive
 
+    !> Largest |imposed value| of the drives of dof `dof` of `target` over the
+    !> run: at its start and end and at the table points.
+    real(wp) function drive_max(drives, target, dof, is_velocity) result(vmax)
+      type(drive_t), intent(in) :: drives(:)
+      integer, intent(in) :: target, dof
+      logical, intent(in) :: is_velocity
+      real(wp) :: t0, t1
+      integer :: j
+      t0 = sc%time
+      t1 = sc%time + sc%h * real(deck%run%number_of_steps, wp)
+      vmax = 0.0_wp
+      do j = 1, size(drives)
+        associate (dr => drives(j))
+          if (dr%body /= target .or. dr%dof /= dof .or. (dr%is_velocity .neqv. is_velocity)) cycle
+          vmax = max(vmax, abs(drive_value(dr, t0)), abs(drive_value(dr, t1)))
+          if (allocated(dr%evo_v)) vmax = max(vmax, maxval(abs(dr%evo_v)))
+          if (.not. allocated(dr%evo_t)) vmax = max(vmax, (abs(dr%ct) + abs(dr%amp)) * &
+                                                    max(abs(min(1.0_wp, dr%rampi + dr%ramp * t0)), &
+                                                        abs(min(1.0_wp, dr%rampi + dr%ramp * t1))))
+        end associate
+      end do
+    end function drive_max
+
     !> An alert distance beyond the resolvable range of the largest contactor
     !> makes every pair a contact (O(n^2) contacts) without meaning anything.
     subroutine check_alert(k)
       integer, intent(in) :: k
-      real(wp) :: lim
-      if (.not. any(sc%tactors%bound > 0.0_wp)) return   ! meshes only: sizes known at detection
-      lim = resolvable_length(maxval(sc%tactors%bound))
+      real(wp) :: lim, largest
+      integer :: b
+      ! Mesh contactors are placed at detection: their body's size stands for them.
+      largest = 0.0_wp
+      if (sc%tactors%n > 0) largest = maxval(sc%tactors%bound(1:sc%tactors%n))
+      do b = 1, sc%meshes%n
+        largest = max(largest, mailx_radius(sc%meshes, b))
+      end do
+      if (.not. (largest > 0.0_wp)) return
+      lim = resolvable_length(largest)
       associate (r => deck%see_rules(k))
         if (.not. (max(r%alert, r%global_alert) <= lim)) call input_error(r%src%file, r%src%line, 55, &
           'alert distance '//rtoa(max(r%alert, r%global_alert))//' is beyond '//rtoa(lim)// &
@@ -184,7 +297,7 @@ contains
   function scene_fault(sc) result(msg)
     type(scene_t), intent(in) :: sc
     character(len=:), allocatable :: msg
-    integer :: k, n
+    integer :: k, n, ib
     real(wp) :: lim, pos, moved
     msg = ''
     associate (b => sc%bodies, c => sc%contacts)
@@ -234,9 +347,28 @@ contains
             end do
           end if
           if (.not. all(ieee_is_finite(m%gp))) then
-            msg = 'a MAILx body has a non-finite Gauss-point state (stress, strain or plastic strain)'
+            msg = gauss_point_fault()
             return
           end if
+          do ib = 1, m%n
+            lim = resolvable_length(mailx_radius(m, ib))
+            do k = m%node_first(ib), m%node_first(ib + 1) - 1
+              pos = maxval(abs(m%ref(:, k) + m%x(:, k)))
+              moved = sc%h * maxval(abs(m%v(:, k)))
+              if (pos > lim) then
+                msg = 'MAILx body '//itoa(ib)//' ran away: node '//itoa(k - m%node_first(ib) + 1)//' is at '// &
+                      rtoa(pos)//' from the origin (displacement '//vec(m%x(:, k))//'), beyond '//rtoa(lim)// &
+                      ' (what double precision resolves at the body''s size, '//rtoa(mailx_radius(m, ib))//')'
+                return
+              end if
+              if (moved > lim) then
+                msg = 'MAILx body '//itoa(ib)//' ran away: the velocity of node '//itoa(k - m%node_first(ib) + 1)// &
+                      ' ('//vec(m%v(:, k))//') moves it by '//rtoa(moved)//' in one step, beyond '//rtoa(lim)// &
+                      ' (what double precision resolves at the body''s size, '//rtoa(mailx_radius(m, ib))//')'
+                return
+              end if
+            end do
+          end do
           if (.not. all(ieee_is_finite([m%elastic, m%plastic_work, m%work_gravity, m%work_forces, m%work_supports]))) then
             msg = 'the energy audit of the meshes overflowed (elastic '//rtoa(m%elastic)//', plastic work '// &
                   rtoa(m%plastic_work)//', work of supports '//rtoa(m%work_supports)//')'
@@ -268,6 +400,33 @@ contains
     end associate
 
   contains
+
+    !> The first Gauss point with a non-finite state: body, element, point and quantity.
+    function gauss_point_fault() result(s)
+      character(len=:), allocatable :: s
+      integer :: b, e, g
+      character(len=*), parameter :: names(4) = [character(len=26) :: 'stress', 'strain', 'plastic strain', &
+                                                 'cumulative plastic strain']
+      integer, parameter :: first(4) = [gp_stress, gp_strain, gp_plastic_strain, gp_p]
+      integer :: q
+      s = 'a MAILx body has a non-finite Gauss-point state'
+      associate (m => sc%meshes)
+        do b = 1, m%n
+          do e = m%elem_first(b), m%elem_first(b + 1) - 1
+            do g = m%el_gp(e), m%el_gp(e + 1) - 1
+              if (all(ieee_is_finite(m%gp(:, g)))) cycle
+              do q = 4, 1, -1
+                if (.not. all(ieee_is_finite(m%gp(first(q):merge(first(q), first(q) + 3, q == 4), g)))) &
+                  s = 'MAILx body '//itoa(b)//' has a non-finite '//trim(names(q))//' at Gauss point '// &
+                      itoa(g - m%el_gp(e) + 1)//' of its element '//itoa(e - m%elem_first(b) + 1)//' ('// &
+                      vec(m%gp(first(q):merge(first(q), first(q) + 3, q == 4), g))//')'
+              end do
+              return
+            end do
+          end do
+        end do
+      end associate
+    end function gauss_point_fault
 
     function body_name(k) result(s)
       integer, intent(in) :: k

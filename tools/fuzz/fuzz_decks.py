@@ -12,7 +12,11 @@ test_cases/compat when present) with one to three mutations: extreme or scaled n
 (kept in their fixed column, or spilling one column), sign flips, a number shifted one
 column, characters inserted or deleted, lines dropped, doubled, swapped or cut, text
 appended after the last field, a keyword or name replaced by another one, COMMAND.DAT
-values pushed to their limits, an evolution file replaced by a directory.
+values pushed to their limits, an evolution file replaced by a directory; and, aimed at
+meshed and exploded decks, extreme gravity, extreme DOF.INI velocities of mesh nodes,
+extreme driven velocities of mesh nodes, NLGS relaxation near 2, a NEW MECAx SETS count
+one off, and (with --restarts F) a corrupted restart point of an accepted run fed back
+through --restart.
 
 Each deck goes through ``fracas --check`` and, if accepted, a short run
 (``--set number_of_steps=STEPS``). Outcomes:
@@ -23,6 +27,8 @@ Each deck goes through ``fracas --check`` and, if accepted, a short run
             what double precision resolves at its size), stopped (exit 1 with a message and
             complete = 0), crash, hang, lie (exit 0 but nonsense or complete != 1),
             input error at the start of a run that --check accepted (inconsistent)
+    restart (a fraction --restarts of the finished runs) refused (exit 1 naming the
+            restart point's dataset), ok, crash, hang, lie (as a run)
 
 Exit status 1 if any crash, hang, lie or inconsistency was found (the decks are copied to
 --keep-findings with what was done to them), else 0. doc/fuzzing.md gives the counts of
@@ -65,7 +71,7 @@ COMMAND_VALUES = {
     "detection_frequency": ["2", "7", "1000", "2147483647"],
     "nlgs_check": ["Quad", "Maxm", "QM/16"],
     "nlgs_tolerance": ["1e-300", "1e300", "1e-16", "0.5"],
-    "nlgs_relaxation": ["1e-300", "1.999999", "0.01"],
+    "nlgs_relaxation": ["1e-300", "1.999999", "0.01", "1.99", "1.95", "1.9"],
     "nlgs_sweeps_per_check": ["1", "2147483647", "1000"],
     "nlgs_max_checks": ["1", "2147483647", "100000"],
     "nlgs_order": ["stored", "reversed", "shuffled", "colored"],
@@ -74,7 +80,9 @@ COMMAND_VALUES = {
     "output_hdf5_every": ["1", "0", "2147483647"],
     "progress_every": ["1", "2147483647"],
 }
+MESH_EXTREMES = ["1e100", "-1e100", "5e100", "1e20", "1e300", "-1e308", "1e10", "NaN"]
 LOCATED = re.compile(r"^\S+:\d+(:\d+)?: ", re.M)
+RESTART_LOCATED = re.compile(r"fracas: error: restart point \S+:/restart/\d+(/\S+)?: ")
 # A whole-file error (unreadable, a directory, no END line) names the file without a line.
 FILE_LEVEL = re.compile(r"^\S+\.(DAT|INI|OUT|dat|ini): ", re.M)
 EPS = 2.220446049250313e-16
@@ -211,6 +219,71 @@ def mutate_file(rng, path, log):
     path.write_text("\n".join(lines))
 
 
+def _set_field(lines, i, m, value, log, what):
+    """Number m of line i replaced by value in its columns."""
+    tok = m.group(0)
+    new = _format_like(tok, value)
+    lines[i] = lines[i][:m.start()] + new + lines[i][m.end():]
+    log.append(f"{what} (line {i + 1}): {tok!r} -> {new!r}")
+
+
+def mutate_meshed(rng, dest, log):
+    """A mutation aimed at meshed decks (issue 23): gravity, a mesh node's DOF.INI
+    velocity, a driven mesh node's velocity, or the NEW MECAx SETS count of POSTPRO.DAT.
+    Returns False when the deck has nothing of the kind chosen."""
+    dat = dest / "DATBOX"
+    kind = rng.choice(["gravity", "node_velocity", "driven_node", "sets_count"])
+    if kind == "gravity":
+        p = dat / "BULK_BEHAV.DAT"
+        lines = p.read_text(errors="replace").split("\n")
+        for i, line in enumerate(lines):
+            if "grv2=" in line:
+                nums = _numbers(line)
+                if len(nums) >= 2:
+                    _set_field(lines, i, nums[rng.choice([0, 1])], rng.choice(MESH_EXTREMES), log, "gravity")
+                    p.write_text("\n".join(lines))
+                    return True
+        return False
+    if kind in ("node_velocity", "driven_node"):
+        # a V line of a mesh node in DOF.INI (V(1) or V(2)), or the CT of a driven mesh dof
+        name, what = (("DOF.INI", "DOF.INI mesh node velocity") if kind == "node_velocity" else
+                      ("DRV_DOF.DAT", "DRV_DOF.DAT mesh node CT"))
+        p = dat / name
+        if not p.exists():
+            return False
+        lines = p.read_text(errors="replace").split("\n")
+        model, rows = None, []
+        for i, line in enumerate(lines):
+            if line.startswith((" MAILx", " RBDY2")):
+                model = line.split()[0]
+            elif model == "MAILx" and ("V(1)=" in line if kind == "node_velocity"
+                                       else line.lstrip().startswith(("vlocy", "force"))):
+                rows.append(i)
+        if not rows:
+            return False
+        i = rng.choice(rows)
+        nums = _numbers(lines[i])
+        if len(nums) < 2:
+            return False
+        m = rng.choice(nums[-2:]) if kind == "node_velocity" else nums[1]
+        _set_field(lines, i, m, rng.choice(MESH_EXTREMES), log, what)
+        p.write_text("\n".join(lines))
+        return True
+    p = dat / "POSTPRO.DAT"
+    if not p.exists():
+        return False
+    lines = p.read_text(errors="replace").split("\n")
+    for i, line in enumerate(lines):
+        if line.startswith("NEW MECAx SETS") and i + 2 < len(lines):
+            n = int(lines[i + 2].split()[0]) if lines[i + 2].split() and lines[i + 2].split()[0].isdigit() else 1
+            new = max(0, n + rng.choice([-1, 1]))
+            lines[i + 2] = f"{new:7d}"
+            log.append(f"POSTPRO.DAT:{i + 3}: NEW MECAx SETS count {n} -> {new}")
+            p.write_text("\n".join(lines))
+            return True
+    return False
+
+
 def mutate_command(rng, path, log):
     text = path.read_text(errors="replace")
     key = rng.choice(sorted(COMMAND_VALUES))
@@ -247,6 +320,9 @@ def make_deck(seed, i, sources, work):
         cfile = command if command is not None else dest / "DATBOX" / "COMMAND.DAT"
         if r < 0.2 and cfile.exists():
             mutate_command(rng, cfile, log)
+        elif r < 0.45 and "MAILx" in (dest / "DATBOX" / "BODIES.DAT").read_text(errors="replace") \
+                and mutate_meshed(rng, dest, log):
+            pass
         elif r < 0.23:
             evo = [p for p in files if p.name not in ("BODIES.DAT", "BULK_BEHAV.DAT", "TACT_BEHAV.DAT",
                                                       "DRV_DOF.DAT", "COMMAND.DAT", "DOF.INI", "Vloc_Rloc.INI")]
@@ -308,6 +384,14 @@ def results_sound(h5path, steps):
                 v = np.asarray(v)
                 if v.dtype.kind == "f" and not np.all(np.isfinite(v)):
                     return f"snapshot {name}: {what} is not finite"
+            for k, v in snap.mesh.items():
+                v = np.asarray(v) if not isinstance(v, dict) else np.zeros(0)
+                if v.dtype.kind == "f" and not np.all(np.isfinite(v)):
+                    return f"snapshot {name}: mesh_{k} is not finite"
+            if "X" in snap.mesh and "reference" in f.mesh:
+                bad = _mesh_runaway(f.mesh, np.asarray(snap.mesh["X"]))
+                if bad:
+                    return f"snapshot {name}: {bad}"
             if radius.size and ref.shape == snap.X.shape and ref.shape[1] == 3:
                 pos = np.abs(ref[:, :2] + snap.X[:, :2]).max(axis=-1)
                 lim = 1e-3 * radius / EPS
@@ -315,6 +399,85 @@ def results_sound(h5path, steps):
                     b = int(np.argmax(pos / lim))
                     return f"snapshot {name}: body {b + 1} at {pos[b]:.3g}, beyond what double precision resolves"
     return ""
+
+
+def _mesh_runaway(mesh, x):
+    """'' if every node of every meshed body is within what double precision resolves at
+    the body's size (half the diagonal of its reference box), else which is not."""
+    import numpy as np
+    ref = np.asarray(mesh["reference"])
+    first = np.asarray(mesh["body_first_node"])
+    for b in range(len(first) - 1):
+        r = ref[first[b] - 1:first[b + 1] - 1]
+        size = 0.5 * float(np.linalg.norm(r.max(axis=0) - r.min(axis=0)))
+        pos = np.abs(r + x[first[b] - 1:first[b + 1] - 1]).max()
+        if pos > 1e-3 * size / EPS:
+            return f"MAILx body {b + 1} has a node at {pos:.3g}, beyond what double precision resolves"
+    return ""
+
+
+def corrupt_restart(rng, src, dest, log):
+    """A copy of fracas.h5 whose latest restart point has one dataset corrupted: a row
+    more or fewer, a NaN, or an index of 2^31 - 1 / -1. Returns the step, or None."""
+    import h5py
+    import numpy as np
+    shutil.copy(src, dest)
+    with h5py.File(dest, "r+") as f:
+        if "restart" not in f:
+            return None
+        step = int(f["restart"].attrs["last"])
+        g = f["restart"][str(step)]
+        names = []
+        g.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) and o.size > 0 else None)
+        if not names:
+            return None
+        name = rng.choice(sorted(names))
+        a = g[name][()]
+        how = rng.choice(["row_more", "row_less", "bad_value"])
+        if how == "row_more":
+            a = np.concatenate([a, a[-1:]], axis=0)
+        elif how == "row_less":
+            a = a[:-1]
+        elif a.dtype.kind == "f":
+            a = a.copy()
+            a.flat[rng.randrange(a.size)] = rng.choice([np.nan, np.inf, -1e308])
+        else:
+            a = a.copy()
+            a.flat[rng.randrange(a.size)] = rng.choice([2**31 - 1, -1, 0])
+        del g[name]
+        g[name] = a
+        log.append(f"restart point {step}: {name} {how}")
+    return step
+
+
+def one_restart(args, deck, opt, h5, steps, rng, res):
+    """Feed a corrupted copy of the run's latest restart point back through --restart."""
+    bad = deck / "corrupt.h5"
+    log = []
+    at = corrupt_restart(rng, h5, bad, log)
+    if at is None:
+        return
+    res["log"] += log
+    out = deck / "out_restart"
+    total = steps + 5
+    cmd = [args.fracas, "-q", "--overwrite", "--set", f"number_of_steps={total}", "--restart", str(bad),
+           "--output", str(out)] + opt + [str(deck)]
+    rc, _, err, _ = run(cmd, args.run_timeout)
+    res["restart_stderr"] = err.strip()[-400:]
+    if rc is None:
+        res["restart"] = "hang"
+    elif rc == 1 and RESTART_LOCATED.search(err):
+        res["restart"] = "refused"
+    elif rc == 1 and "fracas: error:" in err:
+        res["restart"] = "stopped"
+    elif rc == 0:
+        sound = results_sound(out / "OUTBOX" / "fracas.h5", total - at)
+        res["restart"] = "lie" if sound else "ok"
+        if sound:
+            res["lie"] = sound
+    else:
+        res["restart"] = "crash"
+        res["exit"] = rc
 
 
 def one_deck(args, sources, work, i):
@@ -343,6 +506,9 @@ def one_deck(args, sources, work, i):
             res["run"] = "lie" if bad else "ok"
             if bad:
                 res["lie"] = bad
+            rng = random.Random(f"{args.seed}:{i}:restart")
+            if not bad and rng.random() < args.restarts:
+                one_restart(args, deck, opt, h5, steps, rng, res)
         elif rc == 1 and "fracas: error:" in err:
             res["run"] = "stopped"
             if h5.exists():
@@ -358,7 +524,8 @@ def one_deck(args, sources, work, i):
         else:
             res["run"] = "crash"
             res["exit"] = rc
-    bad = res["check"] in ("crash", "hang") or res["run"] in ("crash", "hang", "lie", "inconsistent")
+    bad = res["check"] in ("crash", "hang") or res["run"] in ("crash", "hang", "lie", "inconsistent") or \
+        res.get("restart") in ("crash", "hang", "lie")
     if bad and args.keep_findings:
         dest = Path(args.keep_findings) / deck.name
         if dest.exists():
@@ -384,10 +551,14 @@ def main():
     ap.add_argument("--keep-findings", default=None, help="copy decks that crash, hang or lie here")
     ap.add_argument("--keep-decks", action="store_true")
     ap.add_argument("--only", type=int, default=None, help="make and test deck I only")
+    ap.add_argument("--first", type=int, default=0,
+                    help="decks FIRST .. FIRST+DECKS-1 (a long batch run in chunks: same seed, same decks)")
     ap.add_argument("--check-timeout", type=float, default=30.0)
     ap.add_argument("--run-timeout", type=float, default=120.0)
     ap.add_argument("--json", default=None, help="write every outcome here")
     ap.add_argument("--match", default=None, help="mutate only source decks whose name contains this text")
+    ap.add_argument("--restarts", type=float, default=0.0,
+                    help="fraction of finished runs whose restart point is corrupted and fed back through --restart")
     args = ap.parse_args()
 
     sources = source_decks(args.sources, args.lmgc90_decks)
@@ -402,7 +573,7 @@ def main():
     else:
         tmp = tempfile.TemporaryDirectory(prefix="fracas_fuzz_")
         work = Path(tmp.name)
-    ids = [args.only] if args.only is not None else list(range(args.decks))
+    ids = [args.only] if args.only is not None else list(range(args.first, args.first + args.decks))
     t0 = time.perf_counter()
     with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as ex:
         results = list(ex.map(lambda i: one_deck(args, sources, work, i), ids))
@@ -413,19 +584,23 @@ def main():
         count["check_" + r["check"]] = count.get("check_" + r["check"], 0) + 1
         if r["run"]:
             count["run_" + r["run"]] = count.get("run_" + r["run"], 0) + 1
+        if r.get("restart"):
+            count["restart_" + r["restart"]] = count.get("restart_" + r["restart"], 0) + 1
     findings = [r for r in results if r["check"] in ("crash", "hang")
-                or r["run"] in ("crash", "hang", "lie", "inconsistent")]
+                or r["run"] in ("crash", "hang", "lie", "inconsistent") or r.get("restart") in ("crash", "hang", "lie")]
     print(f"fuzz_decks: seed {args.seed}, {len(results)} decks from {len(sources)} sources, "
           f"{args.steps} steps per run, {elapsed:.0f} s")
     for k in ["check_rejected_located", "check_rejected_unlocated", "check_accepted", "check_crash", "check_hang",
-              "run_ok", "run_stopped", "run_crash", "run_hang", "run_lie", "run_inconsistent"]:
+              "run_ok", "run_stopped", "run_crash", "run_hang", "run_lie", "run_inconsistent",
+              "restart_refused", "restart_ok", "restart_stopped", "restart_crash", "restart_hang", "restart_lie"]:
         print(f"  {k:26s} {count.get(k, 0)}")
     for r in findings:
-        print(f"FINDING deck {r['deck']}: check {r['check']}, run {r['run']}: {'; '.join(r['log'])}")
+        print(f"FINDING deck {r['deck']}: check {r['check']}, run {r['run']}, restart {r.get('restart')}: "
+              f"{'; '.join(r['log'])}")
         if r.get("lie"):
             print(f"    {r['lie']}")
-        if r.get("run_stderr") or r.get("check_stderr"):
-            print(f"    {(r.get('run_stderr') or r.get('check_stderr'))[-300:]}")
+        if r.get("restart_stderr") or r.get("run_stderr") or r.get("check_stderr"):
+            print(f"    {(r.get('restart_stderr') or r.get('run_stderr') or r.get('check_stderr'))[-300:]}")
     if args.json:
         Path(args.json).write_text(json.dumps({"seed": args.seed, "counts": count, "seconds": elapsed,
                                                "results": results}, indent=1))

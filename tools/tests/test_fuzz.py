@@ -1,7 +1,8 @@
 """The deck fuzzer must report what it stands for: with a stand-in for fracas that
 accepts every deck and then dies of SIGSEGV, or exits 0 leaving NaN in a complete
-fracas.h5, or hangs, the batch reports crashes, lies and hangs and exits 1; with one
-that rejects every deck at FILE:LINE:COL it reports located rejections and exits 0."""
+fracas.h5, or hangs, or crashes on a corrupted restart point fed back through --restart,
+the batch reports crashes, lies and hangs and exits 1; with one that rejects every deck at
+FILE:LINE:COL it reports located rejections and exits 0."""
 
 import os
 import stat
@@ -30,6 +31,18 @@ FAKES = {
         "with h5py.File(p, 'r+') as f: f['series/kinetic_energy'][3] = float('nan')\n"
         "PY\n"),
     "reject": 'echo "$1:3:5: a planted rejection" >&2; exit 1\n',
+    # a sound run with a restart point, then SIGSEGV when it is fed back through --restart
+    "restart_crash": 'case "$*" in *--restart*) kill -SEGV $$;; esac\n' + ACCEPT + OUTDIR + (
+        '/usr/bin/python3 - "$out" <<PY\n'
+        "import sys, h5py, numpy as np\n"
+        f"sys.path.insert(0, {str(TOOLS)!r})\n"
+        "from fracas_tools import synthetic\n"
+        "p = sys.argv[1] + '/OUTBOX/fracas.h5'\n"
+        "import os; os.makedirs(sys.argv[1] + '/OUTBOX', exist_ok=True)\n"
+        "synthetic.make_h5(p, nx=3, ny=2, n_steps=10, snapshot_every=5, help_style='writer')\n"
+        "with h5py.File(p, 'r+') as f:\n"
+        "    g = f.create_group('restart'); g.attrs['last'] = 10; g.create_group('10')['X'] = np.zeros((6, 3))\n"
+        "PY\n"),
 }
 
 
@@ -39,7 +52,7 @@ def run_fuzz(tmp_path, kind):
     fake.chmod(fake.stat().st_mode | stat.S_IEXEC)
     r = subprocess.run([sys.executable, str(FUZZ), "--fracas", str(fake), "--decks", "2", "--seed", "t",
                         "--sources", "small", "--steps", "10", "--jobs", "1",
-                        "--run-timeout", "3" if kind == "hang" else "120"],
+                        "--run-timeout", "3" if kind == "hang" else "120", "--restarts", "1"],
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     counts = {}
     for line in r.stdout.splitlines():
@@ -49,7 +62,8 @@ def run_fuzz(tmp_path, kind):
     return r.returncode, counts, r.stdout
 
 
-@pytest.mark.parametrize("kind,key", [("crash", "run_crash"), ("hang", "run_hang"), ("lie", "run_lie")])
+@pytest.mark.parametrize("kind,key", [("crash", "run_crash"), ("hang", "run_hang"), ("lie", "run_lie"),
+                                      ("restart_crash", "restart_crash")])
 def test_fuzzer_reports(tmp_path, kind, key):
     rc, counts, out = run_fuzz(tmp_path, kind)
     assert rc == 1 and counts.get(key) == 2, out

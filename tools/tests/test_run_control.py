@@ -113,6 +113,26 @@ def test_postpro_commands_checked(tmp_path):
     np.testing.assert_allclose(t, [0.002, 0.004, 0.006, 0.008, 0.010])      # STEP 2
 
 
+def test_check_and_run_agree_on_node_sets(tmp_path):
+    """NEW MECAx SETS announcing 3 sets where 2 follow (issue 23, item 6): --check used to
+    say OK and the run refuse the deck after creating OUTBOX/fracas.h5 and
+    DISPLAY/fracas.pvd (so the next run needed --overwrite). Both refuse it now, at the
+    same line, and the run writes nothing."""
+    deck = copy_deck("mesh_exploded_beam", tmp_path)
+    text = (deck / "DATBOX" / "POSTPRO.DAT").read_text().splitlines()
+    assert text[2].strip() == "2"
+    text[2] = text[2].replace("2", "3")
+    (deck / "DATBOX" / "POSTPRO.DAT").write_text("\n".join(text) + "\n")
+    args = ["--set", "time_step=2e-5", "--set", "number_of_steps=5", "--set", "output_vtk_every=1"]
+    check = run("--check", *args, deck)
+    out = tmp_path / "out"
+    p = run("-q", "--output", out, *args, deck)
+    where = re.search(r"POSTPRO\.DAT:\d+:\d+: NEW MECAx SETS: .*", p.stderr)
+    assert check.returncode == 1 and p.returncode == 1, (check.stdout, p.stderr)
+    assert where and where.group(0) in check.stderr
+    assert not out.exists()
+
+
 def test_dissipated_energy_of_a_sliding_disk(tmp_path):
     """driven_evolution: the disk is pushed by Fx(t), slides from about t = 0.41 s to
     1.98 s against dynamic friction 0.4 W and sticks otherwise. Reference: the
@@ -209,3 +229,21 @@ def test_converged_run_passes_in_fail_mode(tmp_path):
     p, h5 = run_unconverged(tmp_path, "fail", starve=False)
     assert p.returncode == 0, p.stderr
     assert "NLGS did not converge" not in p.stdout
+
+
+def test_newton_iterations_share_the_step_sweep_budget(tmp_path):
+    """A J2 body's Newton iterations share the step's NLGS sweep budget
+    (nlgs_sweeps_per_check x nlgs_max_checks, the bound --check enforces) instead of each
+    running it all (issue 23, item 11: one step took 354 s, 20 x the bound). The hydrided
+    plate (J2 matrix, cohesive interfaces) with a budget of 2 x 3 sweeps and a tolerance
+    it cannot meet: before, steps took up to 30 sweeps; now at most 6, marked unconverged."""
+    out = tmp_path / "out"
+    p = run("-q", "--set", "number_of_steps=120", "--set", "nlgs_sweeps_per_check=2", "--set", "nlgs_max_checks=3",
+            "--set", "nlgs_tolerance=1e-15", "--output", out,
+            ROOT / "test_cases" / "validation" / "hydrided_plate" / "weak")
+    assert p.returncode == 0, p.stderr
+    with h5py.File(out / "OUTBOX" / "fracas.h5") as f:
+        sweeps = f["series/sweeps"][:]
+        assert len(sweeps) == 120 and sweeps.max() <= 6
+        assert f["series/newton_iterations"][:].max() >= 2          # the steps did iterate
+        assert (f["series/converged"][:] == 0).all()
