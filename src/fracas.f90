@@ -155,7 +155,9 @@ contains
       late = late + rep%late_contacts
       late_max = max(late_max, rep%late_overlap)
       call output_series(out, sc, rep)
-      if (every_n(deck%run%output_vtk_every)) call output_vtk(out, sc)
+      ! The last step always ends DISPLAY, whatever the interval.
+      if (every_n(deck%run%output_vtk_every) .or. (deck%run%output_vtk_every > 0 .and. istep == nsteps)) &
+        call output_vtk(out, sc)
       if (every_n(deck%run%output_dof_every) .or. (deck%run%output_dof_every == 0 .and. istep == nsteps)) &
         call output_outbox(out, sc)
       ! A restart point with every snapshot (which flushes the file) and at the last step.

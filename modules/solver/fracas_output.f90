@@ -17,7 +17,7 @@ module fracas_output
   use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset, h5_close_group, h5_create_group
   use fracas_vtk, only: vtu_t, vtu_begin, vtu_points, vtu_cells, vtu_vertex_cells, vtu_point_data, &
                         vtu_cell_data, vtu_end, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_polygon, &
-                        vtu_cells_fixed, vtk_line
+                        vtu_cells_fixed, vtk_line, vtu_field_strings
   use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc, tk_disk, &
                                tk_xksid, tk_alpxx
   use fracas_scene, only: scene_t, step_report_t
@@ -60,6 +60,8 @@ module fracas_output
     logical :: vtk_single = .true.        !< reals of the .vtu as Float32
     integer :: part_disks = -1, part_shapes = -1, part_contacts = -1   !< .pvd parts (-1: not written)
     integer :: part_meshes = -1, part_interfaces = -1, part_cracks = -1
+    !> Bulk behaviour of each material index (the names of the meshes' `material` field).
+    character(len=5), allocatable :: material_names(:)
     type(results_h5_t) :: h5
     logical :: h5_open = .false.
     type(postpro_t) :: pp
@@ -94,6 +96,7 @@ contains
     o%disk_points = deck%run%output_vtk_disks /= 'polygons'
     o%vtk_single = deck%run%output_vtk_precision /= 'double'
     call clear_earlier_results(out_dir, overwrite, with_vtk)
+    o%material_names = [(deck%materials(k)%nickname, k=1, size(deck%materials))]
     call make_dir(o%outbox, parents=.true.)
     if (with_vtk) then
       call make_dir(o%display, parents=.true.)
@@ -360,7 +363,7 @@ contains
       call pvd_add(o%pvd, sc%time, 'shapes_'//num//'.vtu', part=o%part_shapes)
     end if
     if (o%part_meshes >= 0) then
-      call write_meshes_vtu(o%display//'/meshes_'//num//'.vtu', sc, o%vtk_single)
+      call write_meshes_vtu(o%display//'/meshes_'//num//'.vtu', sc, o%vtk_single, o%material_names)
       call pvd_add(o%pvd, sc%time, 'meshes_'//num//'.vtu', part=o%part_meshes)
     end if
     if (o%part_interfaces >= 0) then
@@ -407,11 +410,13 @@ contains
   !> Meshed bodies as an unstructured grid in the current configuration:
   !> point data displacement and velocity; cell data (Gauss-point averages)
   !> stress tensor (xx, yy, zz, xy as a symmetric 3x3), von Mises stress,
-  !> equivalent plastic strain, material, body.
-  subroutine write_meshes_vtu(path, sc, single)
+  !> equivalent plastic strain, material, body; field data material_names
+  !> (the bulk behaviour of material k is entry k).
+  subroutine write_meshes_vtu(path, sc, single, material_names)
     character(len=*), intent(in) :: path
     type(scene_t), intent(in) :: sc
     logical, intent(in) :: single
+    character(len=*), intent(in) :: material_names(:)
     type(vtu_t) :: w
     real(wp), allocatable :: gp(:, :), stress(:, :), vm(:), p(:), avg(:)
     integer(ik), allocatable :: conn(:), offs(:), types(:), body(:), mat(:)
@@ -440,10 +445,12 @@ contains
         end do
       end do
       call vtu_begin(w, path, m%nnodes, m%nelem, time=sc%time, single=single)
+      call vtu_field_strings(w, 'material_names', material_names)
       call vtu_points(w, m%ref + m%x)
       call vtu_cells(w, conn, offs, types)
-      call vtu_point_data(w, 'displacement', m%x)
-      call vtu_point_data(w, 'velocity', m%v)
+      ! 3 components (z = 0): ParaView's Warp By Vector and glyphs need them.
+      call vtu_point_data(w, 'displacement', xyz(m%x))
+      call vtu_point_data(w, 'velocity', xyz(m%v))
       call vtu_cell_data(w, 'stress', stress)
       call vtu_cell_data(w, 'von_mises', vm)
       call vtu_cell_data(w, 'plastic_strain', p)
@@ -455,7 +462,8 @@ contains
 
   !> Cohesive interfaces as lines (the candidate edge, current configuration)
   !> with cell data beta (the lowest of its points), broken (1/0), damaged and
-  !> family (index in /mesh interface_families).
+  !> family (index in /mesh interface_families; field data family_names
+  !> names family k as entry k).
   subroutine write_interfaces_vtu(path, sc, single)
     character(len=*), intent(in) :: path
     type(scene_t), intent(in) :: sc
@@ -478,6 +486,7 @@ contains
         family(e) = int(cr%edge_family(e), ik)
       end do
       call vtu_begin(w, path, 2 * ne, ne, time=sc%time, single=single)
+      call vtu_field_strings(w, 'family_names', cr%family_names)
       call vtu_points(w, pts)
       call vtu_cells_fixed(w, nodes, vtk_line)
       call vtu_cell_data(w, 'beta', beta)
@@ -836,6 +845,14 @@ contains
     end do
     end associate
   end function gpv_records
+
+  !> 2-D vectors (2, n) as 3-D ones (3, n) with z = 0.
+  pure function xyz(v) result(r)
+    real(wp), intent(in) :: v(:, :)
+    real(wp) :: r(3, size(v, 2))
+    r(1:2, :) = v
+    r(3, :) = 0.0_wp
+  end function xyz
 
   !> Von Mises equivalent stress of a stress (xx, yy, xy, zz).
   pure real(wp) function von_mises(s)
