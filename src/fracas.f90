@@ -12,7 +12,7 @@ program fracas
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
   use fracas_output, only: output_t, output_open, output_vtk, output_outbox, output_snapshot, &
                            output_series, output_close, output_summary, output_timing
-  use fracas_version, only: version_string
+  use fracas_version, only: version_report
   use fracas_state_guard, only: scene_check_start, scene_fault
   use fracas_restart, only: restart_save, restart_load
   use fracas_command_line, only: argument_value
@@ -78,7 +78,7 @@ contains
       case ('--fail-unconverged')
         settings = [character(len=1024) :: settings, 'nlgs_unconverged=fail']
       case ('--version')
-        write (output_unit, '(a)') 'fracas '//version_string
+        write (output_unit, '(a)') version_report('fracas')
         return
       case ('--help', '-h')
         call usage()

@@ -21,7 +21,7 @@ module fracas_output
   use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc, tk_disk, &
                                tk_xksid, tk_alpxx
   use fracas_scene, only: scene_t, step_report_t
-  use fracas_version, only: version_string
+  use fracas_version, only: version_string, git_commit, build_type, compiler, compiler_flags
   use fracas_contact_laws, only: law_czm
   use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file, write_gpv_file
   use fracas_mailx, only: mailx_gauss_values
@@ -31,6 +31,7 @@ module fracas_output
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close, results_flush, &
                                results_group, results_last_snapshot
+  use fracas_h5_describe, only: h5_describe
   use fracas_postpro, only: postpro_t, postpro_open, postpro_step, postpro_flush, postpro_close, postpro_owns
   implicit none
   private
@@ -45,6 +46,9 @@ module fracas_output
     'mean_overlap', 'max_overlap', 'solve_time', 'step_time', 'elastic_energy', 'plastic_work', &
     'newton_iterations', 'crack_length', 'damaged_length', 'broken_interfaces', 'damaged_interfaces', &
     'bodies_time', 'detect_time', 'prepare_time', 'contact_updates', 'velocity_time']
+  !> The series that count (stored as Int32; contact_updates, which can pass 2^31, stays Float64).
+  character(len=24), parameter :: integer_series(8) = [character(len=24) :: 'step', 'contacts', &
+    'active_contacts', 'sweeps', 'converged', 'newton_iterations', 'broken_interfaces', 'damaged_interfaces']
   integer, parameter :: n_outline = 24   !< points of a circle or wall outline
   !> Seconds of wall time between flushes of the POSTPRO files.
   real(wp), parameter :: flush_interval = 2.0_wp
@@ -124,9 +128,16 @@ contains
     end if
 
     call results_open(o%h5, o%outbox//'/fracas.h5', overwrite, deck%case_dir, sc%h, sc%theta, series_names, &
-                      version=version_string)
+                      version=version_string, integer_series=integer_series)
     o%h5_open = .true.
     call h5_write_attr(o%h5%fid, 'units', units_statement)
+    ! Provenance: what built this program (fracas --version says the same).
+    call h5_write_attr(o%h5%fid, 'git_commit', git_commit)
+    call h5_write_attr(o%h5%fid, 'build_type', build_type)
+    call h5_write_attr(o%h5%fid, 'compiler', compiler)
+    call h5_write_attr(o%h5%fid, 'compiler_flags', compiler_flags)
+    call h5_write_attr(o%h5%fid, 'mpi_ranks', 1_ik)          ! serial: one process,
+    call h5_write_attr(o%h5%fid, 'threads', 1_ik)            ! one thread
     call h5_write_attr(o%h5%fid, 'gravity', deck%gravity)
     call results_write_bodies(o%h5, sc%bodies%number, sc%bodies%mass(1, :), sc%bodies%mass(3, :), &
                               sc%bodies%avrd, sc%bodies%ref)
@@ -138,6 +149,7 @@ contains
     call results_write_help(o%h5, status_names, inter_names, law_names)
     call write_run_group(o, deck)
     call write_contactors_group(o, sc)
+    call h5_describe(o%h5%fid)
     call results_flush(o%h5)
 
     call postpro_open(o%pp, deck%postpro, out_dir, deck%run%nlgs_check, sc%meshes)
@@ -153,32 +165,35 @@ contains
     type(text_file_t) :: tf
     character(len=:), allocatable :: text
     integer :: k
+    character(len=200), allocatable :: control(:)
+    allocate (control(0))
     associate (r => deck%run)
       call results_group(o%h5, 'run', g)
-      call h5_write_attr(g, 'time_step', r%time_step)
-      call h5_write_attr(g, 'number_of_steps', r%number_of_steps)
-      call h5_write_attr(g, 'final_time', r%final_time)
-      call h5_write_attr(g, 'theta', r%theta)
-      call h5_write_attr(g, 'detection_frequency', r%detection_frequency)
-      call h5_write_attr(g, 'nlgs_check', trim(r%nlgs_check))
-      call h5_write_attr(g, 'nlgs_tolerance', r%nlgs_tolerance)
-      call h5_write_attr(g, 'nlgs_relaxation', r%nlgs_relaxation)
-      call h5_write_attr(g, 'nlgs_sweeps_per_check', r%nlgs_sweeps_per_check)
-      call h5_write_attr(g, 'nlgs_max_checks', r%nlgs_max_checks)
-      call h5_write_attr(g, 'nlgs_order', trim(r%nlgs_order))
-      call h5_write_attr(g, 'nlgs_seed', r%nlgs_seed)
-      call h5_write_attr(g, 'nlgs_unconverged', trim(r%nlgs_unconverged))
-      call h5_write_attr(g, 'output_dof_every', r%output_dof_every)
-      call h5_write_attr(g, 'output_vtk_every', r%output_vtk_every)
-      call h5_write_attr(g, 'output_vtk_disks', trim(r%output_vtk_disks))
-      call h5_write_attr(g, 'output_vtk_precision', trim(r%output_vtk_precision))
-      call h5_write_attr(g, 'output_hdf5_every', r%output_hdf5_every)
-      call h5_write_attr(g, 'progress_every', r%progress_every)
-      call h5_write_attr(g, 'driven_start', trim(r%driven_start))
-      call h5_write_attr(g, 'plane', trim(r%plane))
-      call h5_write_attr(g, 'newton_tolerance', r%newton_tolerance)
-      call h5_write_attr(g, 'newton_max_iterations', r%newton_max_iterations)
-      call h5_write_attr(g, 'linear_solver', trim(r%linear_solver))
+      call put_r('time_step', r%time_step)
+      call put_i('number_of_steps', r%number_of_steps)
+      call h5_write_attr(g, 'final_time', r%final_time)       ! -1: not given
+      if (r%final_time >= 0.0_wp) call put_r('final_time', r%final_time)
+      call put_r('theta', r%theta)
+      call put_i('detection_frequency', r%detection_frequency)
+      call put_s('nlgs_check', trim(r%nlgs_check))
+      call put_r('nlgs_tolerance', r%nlgs_tolerance)
+      call put_r('nlgs_relaxation', r%nlgs_relaxation)
+      call put_i('nlgs_sweeps_per_check', r%nlgs_sweeps_per_check)
+      call put_i('nlgs_max_checks', r%nlgs_max_checks)
+      call put_s('nlgs_order', trim(r%nlgs_order))
+      call put_i('nlgs_seed', r%nlgs_seed)
+      call put_s('nlgs_unconverged', trim(r%nlgs_unconverged))
+      call put_i('output_dof_every', r%output_dof_every)
+      call put_i('output_vtk_every', r%output_vtk_every)
+      call put_s('output_vtk_disks', trim(r%output_vtk_disks))
+      call put_s('output_vtk_precision', trim(r%output_vtk_precision))
+      call put_i('output_hdf5_every', r%output_hdf5_every)
+      call put_i('progress_every', r%progress_every)
+      call put_s('driven_start', trim(r%driven_start))
+      call put_s('plane', trim(r%plane))
+      call put_r('newton_tolerance', r%newton_tolerance)
+      call put_i('newton_max_iterations', r%newton_max_iterations)
+      call put_s('linear_solver', trim(r%linear_solver))
     end associate
     text = ''
     if (allocated(deck%command_file)) text = deck%command_file
@@ -197,7 +212,33 @@ contains
     else
       call h5_write_dataset(g, 'settings', [character(len=1) ::])
     end if
+    ! Every setting as 'keyword value', a COMMAND.DAT the run could be repeated with.
+    call h5_write_dataset(g, 'control', control)
     call h5_close_group(g)
+
+  contains
+
+    subroutine put_s(key, value)
+      character(len=*), intent(in) :: key, value
+      call h5_write_attr(g, key, value)
+      control = [character(len=200) :: control, key//' '//value]
+    end subroutine put_s
+
+    subroutine put_i(key, value)
+      character(len=*), intent(in) :: key
+      integer, intent(in) :: value
+      call h5_write_attr(g, key, value)
+      control = [character(len=200) :: control, key//' '//itoa(value)]
+    end subroutine put_i
+
+    subroutine put_r(key, value)
+      character(len=*), intent(in) :: key
+      real(wp), intent(in) :: value
+      character(len=32) :: buf
+      call h5_write_attr(g, key, value)
+      write (buf, '(es23.16)') value
+      control = [character(len=200) :: control, key//' '//trim(adjustl(buf))]
+    end subroutine put_r
   end subroutine write_run_group
 
   !> /contactors: the geometry of every contactor: of a rigid body in its
@@ -1075,6 +1116,7 @@ contains
     type(output_t), intent(inout) :: o
     logical, intent(in), optional :: complete
     character(len=*), intent(in), optional :: end_reason
+    if (o%h5_open) call h5_describe(o%h5%fid)    ! units and description on every dataset
     if (o%h5_open) call results_close(o%h5, complete, end_reason)
     o%h5_open = .false.
     call postpro_close(o%pp)
