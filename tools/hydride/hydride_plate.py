@@ -475,4 +475,5 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    from fracas_tools.cli import run_main  # bad input: a message, not a traceback
+    sys.exit(run_main(main, "hydride_plate.py"))

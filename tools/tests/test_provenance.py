@@ -4,6 +4,7 @@ rank and thread counts; every dataset carries `units` and a `description` (none 
 'undocumented' by the table of modules/io/fracas_h5_describe.f90); counting series
 are integers; /run/control lists every run-control setting as a replayable COMMAND.DAT."""
 import subprocess
+import sys
 
 import h5py
 import numpy as np
@@ -90,3 +91,17 @@ def test_run_control_is_a_command_file(plate, tmp_path):
         for k, v in first.items():
             if k != "number_of_steps":
                 assert f["run"].attrs[k] == v, k
+
+
+def test_report_on_a_fracture_run(plate, tmp_path):
+    """fracas-tools report on a meshed run names its meshed bodies, reports its cracks and
+    does not complain about a DATBOX it does not need (issue 22, item 10)."""
+    p = subprocess.run([sys.executable, "-m", "fracas_tools", "report", str(plate.parent.parent), "--out",
+                        str(tmp_path / "rep")], cwd=ROOT / "tools", capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    text = (tmp_path / "rep/report.md").read_text()
+    assert "1474 meshed (1474 elements" in text and "DATBOX" not in text
+    with h5py.File(plate) as f:
+        length = f["series/crack_length"][-1]
+    assert f"| crack length (broken interfaces) [length] | {length:.4g} |" in text
+    assert (tmp_path / "rep/cracks.png").stat().st_size > 5000
