@@ -90,6 +90,17 @@ module fracas_h5_describe
     'snapshots/N/cracks/edge_broken_step|-|step at which each interface edge broke (0: sound)', &
     'snapshots/N/cracks/edge_beta|1|cohesion beta of each interface edge (1 sound, 0 broken)', &
     'snapshots/N/cracks/fragment_of_body|-|fragment of each meshed body', &
+    'snapshots/N/cracks/fragments/bodies|-|meshed bodies in each fragment', &
+    'snapshots/N/cracks/fragments/elements|-|elements in each fragment', &
+    'snapshots/N/cracks/fragments/mass|mass|mass of each fragment (lumped nodal masses, per unit thickness)', &
+    'snapshots/N/cracks/fragments/centre|length|centre of mass (x, y) of each fragment, current configuration', &
+    'snapshots/N/cracks/fragments/velocity|length/time|velocity (x, y) of the centre of mass of each fragment', &
+    'snapshots/N/cracks/fragments/kinetic_energy|energy|kinetic energy of each fragment', &
+    'snapshots/N/cracks/fragments/second_moments|mass*length^2|second moments of mass Jxx, Jyy, Jxy about the centre', &
+    'snapshots/N/cracks/fragments/polar_moment|mass*length^2|polar moment of inertia Jxx + Jyy about the centre', &
+    'snapshots/N/cracks/fragments/principal_moments|mass*length^2|principal second moments, largest first', &
+    'snapshots/N/cracks/fragments/principal_angle|rad|angle of the major principal axis from x', &
+    'series/fragments|-|fragments (pieces of meshed bodies held by unbroken interfaces)', &
     'restart/*|-|state for a bit-for-bit restart (doc/restart.md); not a result', &
     'series/step|-|step number', &
     'series/time|time|time at the end of the step', &

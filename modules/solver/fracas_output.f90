@@ -26,7 +26,8 @@ module fracas_output
   use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file, write_gpv_file
   use fracas_mailx, only: mailx_gauss_values
   use fracas_elements, only: el_ngauss_gpv, el_name, el_vtk_type, el_vtk_order
-  use fracas_cracks, only: crack_paths_t, cracks_paths, cracks_lengths, cracks_fragments, cracks_edge_beta
+  use fracas_cracks, only: crack_paths_t, cracks_paths, cracks_lengths, cracks_fragments, cracks_edge_beta, &
+                           fragments_t, cracks_fragment_stats
   use fracas_bulk, only: bulk_j2, gp_sxx, gp_szz, gp_ezz, gp_pxx, gp_pzz, gp_p, plane_stress
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close, results_flush, &
@@ -38,17 +39,18 @@ module fracas_output
   public :: output_t, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
             output_flush, output_close, series_names, output_owns, output_summary, output_timing
 
-  integer, parameter :: n_series = 35
+  integer, parameter :: n_series = 36
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
     'step', 'time', 'contacts', 'active_contacts', 'sweeps', 'converged', 'residual_natural_map', &
     'residual_onepq', 'quad_dv', 'maxm_dv', 'mean_dvor', 'kinetic_energy', 'work_gravity', &
     'work_forces', 'work_supports', 'dissipated', 'cohesive_energy', 'damage_dissipated', 'balance_error', &
     'mean_overlap', 'max_overlap', 'solve_time', 'step_time', 'elastic_energy', 'plastic_work', &
     'newton_iterations', 'crack_length', 'damaged_length', 'broken_interfaces', 'damaged_interfaces', &
-    'bodies_time', 'detect_time', 'prepare_time', 'contact_updates', 'velocity_time']
+    'bodies_time', 'detect_time', 'prepare_time', 'contact_updates', 'velocity_time', 'fragments']
   !> The series that count (stored as Int32; contact_updates, which can pass 2^31, stays Float64).
-  character(len=24), parameter :: integer_series(8) = [character(len=24) :: 'step', 'contacts', &
-    'active_contacts', 'sweeps', 'converged', 'newton_iterations', 'broken_interfaces', 'damaged_interfaces']
+  character(len=24), parameter :: integer_series(9) = [character(len=24) :: 'step', 'contacts', &
+    'active_contacts', 'sweeps', 'converged', 'newton_iterations', 'broken_interfaces', 'damaged_interfaces', &
+    'fragments']
   integer, parameter :: n_outline = 24   !< points of a circle or wall outline
   !> Seconds of wall time between flushes of the POSTPRO files.
   real(wp), parameter :: flush_interval = 2.0_wp
@@ -461,7 +463,8 @@ contains
     type(vtu_t) :: w
     real(wp), allocatable :: gp(:, :), stress(:, :), vm(:), p(:), avg(:)
     integer(ik), allocatable :: conn(:), offs(:), types(:), body(:), mat(:)
-    integer :: e, b, ng, nn
+    integer, allocatable :: piece(:)
+    integer :: e, b, ng, nn, nfrag
     associate (m => sc%meshes)
       allocate (gp(size(m%gp, 1), size(m%gp, 2)))
       call mailx_gauss_values(m, gp)
@@ -497,6 +500,10 @@ contains
       call vtu_cell_data(w, 'plastic_strain', p)
       call vtu_cell_data(w, 'material', mat)
       call vtu_cell_data(w, 'body', body)
+      if (sc%cracks%nedges > 0) then        ! fragment of each element (1 .. fragments)
+        call cracks_fragments(sc%cracks, sc%meshes, piece, nfrag)
+        call vtu_cell_data(w, 'fragment', int(piece(body), ik))
+      end if
       call vtu_end(w)
     end associate
   end subroutine write_meshes_vtu
@@ -959,9 +966,35 @@ contains
     call h5_write_dataset(gc, 'edge_beta', cracks_edge_beta(sc%cracks))
     call h5_write_dataset(gc, 'fragment_of_body', int(piece, ik))
     call h5_write_attr(gc, 'fragments', nfrag)
+    call fragments_group(gc, sc, piece, nfrag)
     call h5_close_group(gc)
     call h5_close_group(g)
   end subroutine cracks_snapshot
+
+  !> Group fragments under the cracks of a snapshot: per fragment (fracas_cracks
+  !> cracks_fragment_stats) its bodies, elements, mass, centre, velocity, kinetic
+  !> energy, second moments, polar and principal moments, major-axis angle.
+  subroutine fragments_group(gc, sc, piece, nfrag)
+    integer(hid_t), intent(in) :: gc
+    type(scene_t), intent(in) :: sc
+    integer, intent(in) :: piece(:), nfrag
+    type(fragments_t) :: f
+    integer(hid_t) :: g
+    call cracks_fragment_stats(sc%meshes, piece, nfrag, f)
+    call h5_create_group(gc, 'fragments', g)
+    call h5_write_attr(g, 'count', nfrag)
+    call h5_write_dataset(g, 'bodies', int(f%bodies, ik))
+    call h5_write_dataset(g, 'elements', int(f%elements, ik))
+    call h5_write_dataset(g, 'mass', f%mass)
+    call h5_write_dataset(g, 'centre', f%centre)
+    call h5_write_dataset(g, 'velocity', f%velocity)
+    call h5_write_dataset(g, 'kinetic_energy', f%kinetic)
+    call h5_write_dataset(g, 'second_moments', f%moments)
+    call h5_write_dataset(g, 'polar_moment', f%polar)
+    call h5_write_dataset(g, 'principal_moments', f%principal)
+    call h5_write_dataset(g, 'principal_angle', f%angle)
+    call h5_close_group(g)
+  end subroutine fragments_group
 
   !> The meshed bodies' state in the newest snapshot: nodal displacements and
   !> velocities (2, nodes), the force of the velocity drives on their nodes
@@ -1060,11 +1093,19 @@ contains
       rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
       sc%meshes%plastic_work, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
       real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds, &
-      real(rep%nlgs%updates, wp), rep%velocity_seconds])
+      real(rep%nlgs%updates, wp), rep%velocity_seconds, real(fragment_count(sc), wp)])
     call postpro_step(o%pp, sc, rep)
     call flush_if_due(o)
     call clocked(o, k_series, t0)
   end subroutine output_series
+
+  !> Fragments of the meshed bodies now (0 without cohesive interfaces).
+  integer function fragment_count(sc)
+    type(scene_t), intent(in) :: sc
+    integer, allocatable :: piece(:)
+    fragment_count = 0
+    if (sc%cracks%nedges > 0) call cracks_fragments(sc%cracks, sc%meshes, piece, fragment_count)
+  end function fragment_count
 
   !> Flush the POSTPRO files every flush_interval seconds (fracas.h5 keeps its own clock).
   subroutine flush_if_due(o)

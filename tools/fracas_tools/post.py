@@ -833,7 +833,14 @@ def _cracks_section(run, out_dir, snapshot):
     ax.legend(fontsize=8)
     fig.tight_layout()
     _save(fig, out_dir / "cracks.png")
-    return lines + ["![Crack length](cracks.png)", "",
+    from .fracture import plot_fragment_sizes
+    plot_fragment_sizes(mr, out_dir / "fragments.png")
+    lines += ["![Crack length](cracks.png)", "", "### Fragments", "",
+              "Number of fragments over time and the fragment-mass distribution at a few snapshots "
+              "(per-fragment mass, centre, velocity, kinetic energy, inertia: "
+              "`MeshRun.fragments(snapshot)`, `/snapshots/N/cracks/fragments` in fracas.h5).", "",
+              "![Fragments](fragments.png)", ""]
+    return lines + [
                     "Pictures of the cracks: `tools/fracture/plot_cracks.py RUN OUT.png`, or DISPLAY/fracas.pvd "
                     "in ParaView (`tools/paraview/render_frame.py`).", ""]
 

@@ -14,7 +14,7 @@ import h5py
 import numpy as np
 import pytest
 
-from fracas_run import ROOT, run
+from fracas_run import ROOT, run_example
 
 PVPYTHON, XVFB = shutil.which("pvpython"), shutil.which("xvfb-run")
 if not (PVPYTHON and XVFB):
@@ -28,8 +28,14 @@ SIZE = (1000, 800)
 
 
 def render(pvd, png, *extra):
-    p = subprocess.run([XVFB, "-a", PVPYTHON, str(ROOT / "tools/paraview/render_frame.py"), str(pvd), str(png),
-                        "--size", *map(str, SIZE), *extra], capture_output=True, text=True, timeout=300)
+    # xvfb-run -a can lose a race for a display number to another xvfb-run starting at
+    # the same moment (pvpython then aborts on a bad X connection): try again.
+    for _ in range(3):
+        p = subprocess.run([XVFB, "-a", "-s", "-screen 0 1280x1024x24", PVPYTHON,
+                            str(ROOT / "tools/paraview/render_frame.py"), str(pvd), str(png),
+                            "--size", *map(str, SIZE), *extra], capture_output=True, text=True, timeout=300)
+        if p.returncode == 0 or "X server" not in p.stderr:
+            break
     assert p.returncode == 0, p.stdout + p.stderr
     img = plt.imread(png)[:, :, :3]
     assert img.shape[:2] == (SIZE[1], SIZE[0])
@@ -86,11 +92,7 @@ def filled_check(img, pieces):
 def demo(tmp_path_factory):
     """The demo deck (400 disks falling into a box), 200 steps, VTK every 150: the last
     frame (step 200) is written although 200 is not a multiple of 150."""
-    out = tmp_path_factory.mktemp("demo")
-    p = run("-q", "--output", out, "--set", "number_of_steps=200", "--set", "output_vtk_every=150",
-            ROOT / "test_cases/examples/demo_deposit")
-    assert p.returncode == 0, p.stderr
-    return out
+    return run_example(tmp_path_factory, "demo_deposit", "number_of_steps=200", "output_vtk_every=150")
 
 
 def test_demo_frame_disks_filled(demo, tmp_path):
@@ -107,11 +109,7 @@ def test_demo_frame_disks_filled(demo, tmp_path):
 @pytest.fixture(scope="module")
 def plate(tmp_path_factory):
     """The fracture demo (notched plate struck at its top), 250 steps (62.5 µs): cracks."""
-    out = tmp_path_factory.mktemp("plate")
-    p = run("-q", "--output", out, "--set", "number_of_steps=250", "--set", "output_vtk_every=100",
-            ROOT / "test_cases/examples/notched_plate_impact")
-    assert p.returncode == 0, p.stderr
-    return out
+    return run_example(tmp_path_factory, "notched_plate_impact", "number_of_steps=250", "output_vtk_every=100")
 
 
 def test_crack_frame(plate, tmp_path):

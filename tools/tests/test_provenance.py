@@ -10,17 +10,14 @@ import h5py
 import numpy as np
 import pytest
 
-from fracas_run import ROOT, fracas_bin, run
+from fracas_run import ROOT, fracas_bin, run, run_example
 
 
 @pytest.fixture(scope="module")
 def plate(tmp_path_factory):
     """The fracture demo for 40 steps (meshes, cohesive contacts, cracks, snapshots)."""
-    out = tmp_path_factory.mktemp("plate")
-    p = run("-q", "--output", out, "--set", "number_of_steps=40", "--set", "output_hdf5_every=20",
-            ROOT / "test_cases/examples/notched_plate_impact")
-    assert p.returncode == 0, p.stderr
-    return out / "OUTBOX/fracas.h5"
+    return run_example(tmp_path_factory, "notched_plate_impact", "number_of_steps=40",
+                       "output_hdf5_every=20") / "OUTBOX/fracas.h5"
 
 
 def version_fields():
