@@ -187,10 +187,10 @@ contains
           ' m): bodies move more than the alert distance in one step; '
         ! Exploded meshes: a wider alert glues wrong pairs (doc/fracture.md section 1).
         if (sc%meshes%n > 0) then
-          call warn(trim(msg)//'lower the time step (or raise the alert distance of rigid bodies; the alert '// &
+          call warn(trim(msg)//' lower the time step (or raise the alert distance of rigid bodies; the alert '// &
                     'of exploded meshes stays below fracas_tools.cohesive.safe_alert, doc/fracture.md section 1)')
         else
-          call warn(trim(msg)//'raise the alert distance or lower the time step')
+          call warn(trim(msg)//' raise the alert distance or lower the time step')
         end if
       end block
     end if
