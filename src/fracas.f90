@@ -12,7 +12,7 @@ program fracas
   use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
   use fracas_output, only: output_t, output_prepare, output_open, output_vtk, output_outbox, output_snapshot, &
                            output_series, output_close, output_summary, output_timing
-  use fracas_version, only: version_string
+  use fracas_version, only: version_report
   use fracas_state_guard, only: scene_check_start, scene_fault
   use fracas_restart, only: restart_save, restart_load
   use fracas_postpro, only: postpro_sums, postpro_restore_sums
@@ -80,7 +80,7 @@ contains
       case ('--fail-unconverged')
         settings = [character(len=1024) :: settings, 'nlgs_unconverged=fail']
       case ('--version')
-        write (output_unit, '(a)') 'fracas '//version_string
+        write (output_unit, '(a)') version_report('fracas')
         return
       case ('--help', '-h')
         call usage()
@@ -160,7 +160,9 @@ contains
       late = late + rep%late_contacts
       late_max = max(late_max, rep%late_overlap)
       call output_series(out, sc, rep)
-      if (every_n(deck%run%output_vtk_every)) call output_vtk(out, sc)
+      ! The last step always ends DISPLAY, whatever the interval.
+      if (every_n(deck%run%output_vtk_every) .or. (deck%run%output_vtk_every > 0 .and. istep == nsteps)) &
+        call output_vtk(out, sc)
       if (every_n(deck%run%output_dof_every) .or. (deck%run%output_dof_every == 0 .and. istep == nsteps)) &
         call output_outbox(out, sc)
       ! A restart point with every snapshot (which flushes the file) and at the last step.
@@ -178,16 +180,25 @@ contains
     if (.not. quiet) then
       write (output_unit, '(a,i0,a,f0.3,a,i0,a,es9.2)') 'fracas: done: ', nsteps - first_step + 1, ' steps in ', loop_wall, &
         ' s, ', total_sweeps, ' NLGS sweeps, worst natural-map residual ', worst_residual
+      ! The residual is a diagnostic: say what convergence was judged on.
+      write (output_unit, '(a)') 'fracas: (the residual is a diagnostic, not the convergence test: steps converge '// &
+        'on LMGC90''s '//trim(deck%run%nlgs_check)//' norms below nlgs_tolerance, series/quad_dv and series/converged)'
       write (output_unit, '(a)') 'fracas: output: '//output_summary(out)
       write (output_unit, '(a)') 'fracas: results: '//out_dir//'/OUTBOX/fracas.h5'
       if (deck%run%output_vtk_every > 0) write (output_unit, '(a)') 'fracas: ParaView: '//out_dir//'/DISPLAY/fracas.pvd'
     end if
     if (late > 0) then
       block
-        character(len=200) :: msg
+        character(len=300) :: msg
         write (msg, '(i0,a,es9.2,a)') late, ' contacts were first detected already overlapping (up to ', late_max, &
-          ' m): bodies move more than the alert distance in one step; raise the alert distance or lower the time step'
-        call warn(trim(msg))
+          ' m): bodies move more than the alert distance in one step; '
+        ! Exploded meshes: a wider alert glues wrong pairs (doc/fracture.md section 1).
+        if (sc%meshes%n > 0) then
+          call warn(trim(msg)//' lower the time step (or raise the alert distance of rigid bodies; the alert '// &
+                    'of exploded meshes stays below fracas_tools.cohesive.safe_alert, doc/fracture.md section 1)')
+        else
+          call warn(trim(msg)//' raise the alert distance or lower the time step')
+        end if
       end block
     end if
     if (unconverged > 0) then

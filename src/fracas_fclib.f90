@@ -8,7 +8,7 @@ program fracas_fclib
   use fracas_fclib_io, only: fclib_local_t, fclib_read_local, fclib_write_reactions, fclib_read_reactions
   use fracas_sdl, only: sdl_problem_t, sdl_settings_t, sdl_report_t, sdl_history_t, sdl_build, sdl_solve, &
                         sdl_error, sdl_history_points
-  use fracas_version, only: version_string
+  use fracas_version, only: version_report
   use fracas_command_line, only: argument_value
   use fracas_strings, only: lower, itoa
   implicit none
@@ -90,7 +90,7 @@ contains
       case ('--quiet', '-q')
         quiet = .true.
       case ('--version')
-        write (output_unit, '(a)') 'fracas-fclib '//version_string
+        write (output_unit, '(a)') version_report('fracas-fclib')
         return
       case ('--help', '-h')
         call usage()

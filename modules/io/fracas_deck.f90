@@ -181,7 +181,7 @@ module fracas_deck
     integer :: nlgs_seed = 1
     integer :: output_dof_every = 0      !< DOF.OUT.n / Vloc_Rloc.OUT.n every n steps (0: last step only)
     integer :: output_vtk_every = 0      !< DISPLAY/*.vtu every n steps (0: none)
-    character(len=8) :: output_vtk_disks = 'points'      !< 'points' (with a radius) | 'polygons'
+    character(len=8) :: output_vtk_disks = 'polygons'    !< 'polygons' (filled, as opened) | 'points' (with a radius)
     character(len=6) :: output_vtk_precision = 'single'  !< reals of the .vtu: 'single' | 'double'
     integer :: output_hdf5_every = -1    !< snapshot in fracas.h5 every n steps (0: none; -1: about 100 a run)
     character(len=4) :: nlgs_unconverged = 'warn'  !< a step at the sweep limit: 'warn' | 'fail' (exit 3 at the end) | 'stop'

@@ -72,14 +72,17 @@ contains
     call h5_file_renamed(r%path)
   end subroutine results_rename
 
-  subroutine results_open(r, path, overwrite, case_dir, dt, theta, series_names, version)
+  !> integer_series: the series stored as Int32 (counts, flags); the others Float64.
+  subroutine results_open(r, path, overwrite, case_dir, dt, theta, series_names, version, integer_series)
     type(results_h5_t), intent(inout) :: r
     character(len=*), intent(in) :: path, case_dir
     logical, intent(in) :: overwrite
     real(wp), intent(in) :: dt, theta
     character(len=*), intent(in) :: series_names(:)
     character(len=*), intent(in), optional :: version
+    character(len=*), intent(in), optional :: integer_series(:)
     integer(hid_t) :: g
+    logical :: is_int
     integer :: k, j
     character(len=:), allocatable :: cols
 
@@ -125,7 +128,9 @@ contains
     allocate (r%cols(size(series_names)), r%rows(size(series_names), row_block))
     r%nbuf = 0
     do k = 1, size(series_names)
-      call h5_create_series(g, trim(series_names(k)), r%cols(k))
+      is_int = .false.
+      if (present(integer_series)) is_int = any(integer_series == series_names(k))
+      call h5_create_series(g, trim(series_names(k)), r%cols(k), is_int=is_int)
     end do
     call h5_close_group(g)
 

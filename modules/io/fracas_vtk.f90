@@ -33,7 +33,7 @@ module fracas_vtk
   implicit none
   private
   public :: vtu_t, vtu_begin, vtu_points, vtu_cells, vtu_cells_fixed, vtu_vertex_cells, &
-            vtu_point_data, vtu_cell_data, vtu_field_data, vtu_end, vtu_abort
+            vtu_point_data, vtu_cell_data, vtu_field_data, vtu_field_strings, vtu_end, vtu_abort
   public :: pvd_t, pvd_init, pvd_add, pvd_free
   public :: zlib_uncompress
   public :: vtk_vertex, vtk_poly_vertex, vtk_line, vtk_poly_line, vtk_triangle, vtk_polygon, vtk_quad, &
@@ -229,6 +229,28 @@ contains
     call add_real(w, w%x_field, name, 1, values, ntuples=size(values))
     w%single = single
   end subroutine vtu_field_data
+
+  !> A FieldData array of strings (one tuple per string, trailing blanks
+  !> dropped), e.g. the names behind an integer cell field. Written inline as
+  !> VTK writes String arrays in ASCII: each string as its character codes
+  !> followed by 0.
+  subroutine vtu_field_strings(w, name, strings)
+    type(vtu_t), intent(inout) :: w
+    character(len=*), intent(in) :: name
+    character(len=*), intent(in) :: strings(:)
+    character(len=:), allocatable :: codes
+    integer :: i, j
+    call require(w, 'vtu_field_strings')
+    codes = ''
+    do i = 1, size(strings)
+      do j = 1, len_trim(strings(i))
+        codes = codes//' '//itoa(iachar(strings(i)(j:j)))
+      end do
+      codes = codes//' 0'
+    end do
+    w%x_field = w%x_field//'<DataArray type="String" Name="'//xml_escape(name)//'" NumberOfTuples="'// &
+                itoa(size(strings))//'" format="ascii">'//nl//codes//nl//'</DataArray>'//nl
+  end subroutine vtu_field_strings
 
   subroutine point_r1(w, name, values)
     type(vtu_t), intent(inout) :: w

@@ -21,7 +21,8 @@ module fracas_cracks
   use fracas_ids, only: bm_mesh
   implicit none
   private
-  public :: cracks_t, cracks_init, cracks_update, cracks_lengths, cracks_edge_beta, crack_paths_t, cracks_paths, cracks_fragments
+  public :: cracks_t, cracks_init, cracks_update, cracks_lengths, cracks_edge_beta, crack_paths_t, cracks_paths, cracks_fragments, &
+            fragments_t, cracks_fragment_stats
 
   type :: cracks_t
     integer :: npts = 0, nedges = 0, nfamilies = 0
@@ -50,6 +51,16 @@ module fracas_cracks
     real(wp) :: tip(2) = 0.0_wp                 !< main crack's tip (reference configuration)
     real(wp) :: origin(2) = 0.0_wp              !< where the main crack started (first broken edge)
   end type crack_paths_t
+
+  !> Per fragment (cracks_fragment_stats): meshed bodies and elements, mass,
+  !> centre of mass (2), velocity of the centre (2), kinetic energy, second
+  !> moments about the centre (Jxx, Jyy, Jxy), polar moment, principal moments
+  !> (largest first) and the major axis' angle from x (rad).
+  type :: fragments_t
+    integer, allocatable :: bodies(:), elements(:)
+    real(wp), allocatable :: mass(:), centre(:, :), velocity(:, :), kinetic(:), moments(:, :), polar(:), &
+                             principal(:, :), angle(:)
+  end type fragments_t
 
 contains
 
@@ -343,6 +354,59 @@ contains
       piece(b) = root_id(r)
     end do
   end subroutine cracks_fragments
+
+  !> Fragments as bodies (from the lumped nodal masses of the meshes, per unit
+  !> thickness): counts of meshed bodies and elements, mass, centre of mass,
+  !> velocity of the centre (momentum / mass), kinetic energy (1/2 sum m v^2),
+  !> second moments of mass about the centre (Jxx, Jyy, Jxy), polar moment
+  !> (Jxx + Jyy: the inertia of the fragment turning in the plane) and the
+  !> principal moments (largest first) with the angle of the major axis from x.
+  subroutine cracks_fragment_stats(m, piece, nfrag, f)
+    type(mailx_t), intent(in) :: m
+    integer, intent(in) :: piece(:), nfrag
+    type(fragments_t), intent(out) :: f
+    real(wp) :: x(2), mn, d(2), half, rad
+    integer :: b, k, i
+    allocate (f%bodies(nfrag), f%elements(nfrag), f%mass(nfrag), f%centre(2, nfrag), f%velocity(2, nfrag), &
+              f%kinetic(nfrag), f%moments(3, nfrag), f%polar(nfrag), f%principal(2, nfrag), f%angle(nfrag))
+    f%bodies = 0; f%elements = 0; f%mass = 0.0_wp; f%centre = 0.0_wp; f%velocity = 0.0_wp
+    f%kinetic = 0.0_wp; f%moments = 0.0_wp
+    do b = 1, m%n
+      k = piece(b)
+      f%bodies(k) = f%bodies(k) + 1
+      f%elements(k) = f%elements(k) + m%elem_first(b + 1) - m%elem_first(b)
+      do i = m%node_first(b), m%node_first(b + 1) - 1
+        mn = m%mdiag(1, i)
+        x = m%ref(:, i) + m%x(:, i)
+        f%mass(k) = f%mass(k) + mn
+        f%centre(:, k) = f%centre(:, k) + mn * x
+        f%velocity(:, k) = f%velocity(:, k) + mn * m%v(:, i)
+        f%kinetic(k) = f%kinetic(k) + 0.5_wp * mn * sum(m%v(:, i)**2)
+      end do
+    end do
+    do k = 1, nfrag
+      if (f%mass(k) > 0.0_wp) then
+        f%centre(:, k) = f%centre(:, k) / f%mass(k)
+        f%velocity(:, k) = f%velocity(:, k) / f%mass(k)
+      end if
+    end do
+    do b = 1, m%n          ! second moments about the centres, once these are known
+      k = piece(b)
+      do i = m%node_first(b), m%node_first(b + 1) - 1
+        d = m%ref(:, i) + m%x(:, i) - f%centre(:, k)
+        f%moments(:, k) = f%moments(:, k) + m%mdiag(1, i) * [d(1)**2, d(2)**2, d(1) * d(2)]
+      end do
+    end do
+    do k = 1, nfrag
+      associate (j => f%moments(:, k))
+        f%polar(k) = j(1) + j(2)
+        half = 0.5_wp * (j(1) + j(2))
+        rad = sqrt((0.5_wp * (j(1) - j(2)))**2 + j(3)**2)
+        f%principal(:, k) = [half + rad, half - rad]
+        f%angle(k) = 0.5_wp * atan2(2.0_wp * j(3), j(1) - j(2))
+      end associate
+    end do
+  end subroutine cracks_fragment_stats
 
   ! ---- small helpers: union-find, sorting, merging coincident points ----
 

@@ -19,35 +19,41 @@ module fracas_output
   use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset, h5_close_group, h5_create_group
   use fracas_vtk, only: vtu_t, vtu_begin, vtu_points, vtu_cells, vtu_vertex_cells, vtu_point_data, &
                         vtu_cell_data, vtu_end, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_polygon, &
-                        vtu_cells_fixed, vtk_line
+                        vtu_cells_fixed, vtk_line, vtu_field_strings
   use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc, tk_disk, &
                                tk_xksid, tk_alpxx
   use fracas_scene, only: scene_t, step_report_t
-  use fracas_version, only: version_string
+  use fracas_version, only: version_string, git_commit, build_type, compiler, compiler_flags
   use fracas_contact_laws, only: law_czm
   use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file, write_gpv_file
   use fracas_mailx, only: mailx_gauss_values
   use fracas_elements, only: el_ngauss_gpv, el_name, el_vtk_type, el_vtk_order
-  use fracas_cracks, only: crack_paths_t, cracks_paths, cracks_lengths, cracks_fragments, cracks_edge_beta
+  use fracas_cracks, only: crack_paths_t, cracks_paths, cracks_lengths, cracks_fragments, cracks_edge_beta, &
+                           fragments_t, cracks_fragment_stats
   use fracas_bulk, only: bulk_j2, gp_sxx, gp_szz, gp_ezz, gp_pxx, gp_pzz, gp_p, plane_stress
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close, results_flush, &
                                results_group, results_last_snapshot, results_rename
   use fracas_postpro, only: postpro_t, postpro_prepare, postpro_open, postpro_step, postpro_flush, postpro_close, &
                             postpro_owns
+  use fracas_h5_describe, only: h5_describe
   implicit none
   private
   public :: output_t, output_prepare, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
             output_flush, output_close, series_names, output_owns, output_summary, output_timing
 
-  integer, parameter :: n_series = 35
+  integer, parameter :: n_series = 36
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
     'step', 'time', 'contacts', 'active_contacts', 'sweeps', 'converged', 'residual_natural_map', &
     'residual_onepq', 'quad_dv', 'maxm_dv', 'mean_dvor', 'kinetic_energy', 'work_gravity', &
     'work_forces', 'work_supports', 'dissipated', 'cohesive_energy', 'damage_dissipated', 'balance_error', &
     'mean_overlap', 'max_overlap', 'solve_time', 'step_time', 'elastic_energy', 'plastic_work', &
     'newton_iterations', 'crack_length', 'damaged_length', 'broken_interfaces', 'damaged_interfaces', &
-    'bodies_time', 'detect_time', 'prepare_time', 'contact_updates', 'velocity_time']
+    'bodies_time', 'detect_time', 'prepare_time', 'contact_updates', 'velocity_time', 'fragments']
+  !> The series that count (stored as Int32; contact_updates, which can pass 2^31, stays Float64).
+  character(len=24), parameter :: integer_series(9) = [character(len=24) :: 'step', 'contacts', &
+    'active_contacts', 'sweeps', 'converged', 'newton_iterations', 'broken_interfaces', 'damaged_interfaces', &
+    'fragments']
   integer, parameter :: n_outline = 24   !< points of a circle or wall outline
   !> Seconds of wall time between flushes of the POSTPRO files.
   real(wp), parameter :: flush_interval = 2.0_wp
@@ -67,6 +73,8 @@ module fracas_output
     logical :: vtk_single = .true.        !< reals of the .vtu as Float32
     integer :: part_disks = -1, part_shapes = -1, part_contacts = -1   !< .pvd parts (-1: not written)
     integer :: part_meshes = -1, part_interfaces = -1, part_cracks = -1
+    !> Bulk behaviour of each material index (the names of the meshes' `material` field).
+    character(len=5), allocatable :: material_names(:)
     type(results_h5_t) :: h5
     logical :: h5_open = .false.
     character(len=:), allocatable :: reserve   !< OUTBOX/fracas.h5.reserve while the run holds it
@@ -113,6 +121,7 @@ contains
     o%disk_points = deck%run%output_vtk_disks /= 'polygons'
     o%vtk_single = deck%run%output_vtk_precision /= 'double'
     call refuse_earlier_results(out_dir, overwrite)
+    o%material_names = [(deck%materials(k)%nickname, k=1, size(deck%materials))]
     call make_dir(o%outbox, parents=.true.)
     call lock_output(o, out_dir)
     call clear_earlier_results(out_dir, with_vtk)
@@ -144,9 +153,16 @@ contains
     ! fracas.h5 is valid from its first byte (a kill before leaves a .part,
     ! removed by the next run).
     call results_open(o%h5, o%outbox//'/fracas.h5.part', overwrite, deck%case_dir, sc%h, sc%theta, series_names, &
-                      version=version_string)
+                      version=version_string, integer_series=integer_series)
     o%h5_open = .true.
     call h5_write_attr(o%h5%fid, 'units', units_statement)
+    ! Provenance: what built this program (fracas --version says the same).
+    call h5_write_attr(o%h5%fid, 'git_commit', git_commit)
+    call h5_write_attr(o%h5%fid, 'build_type', build_type)
+    call h5_write_attr(o%h5%fid, 'compiler', compiler)
+    call h5_write_attr(o%h5%fid, 'compiler_flags', compiler_flags)
+    call h5_write_attr(o%h5%fid, 'mpi_ranks', 1_ik)          ! serial: one process,
+    call h5_write_attr(o%h5%fid, 'threads', 1_ik)            ! one thread
     call h5_write_attr(o%h5%fid, 'gravity', deck%gravity)
     call results_write_bodies(o%h5, sc%bodies%number, sc%bodies%mass(1, :), sc%bodies%mass(3, :), &
                               sc%bodies%avrd, sc%bodies%ref)
@@ -158,6 +174,7 @@ contains
     call results_write_help(o%h5, status_names, inter_names, law_names)
     call write_run_group(o, deck)
     call write_contactors_group(o, sc)
+    call h5_describe(o%h5%fid)
     call results_flush(o%h5)
     call results_rename(o%h5, o%outbox//'/fracas.h5')
     if (with_vtk) then
@@ -195,33 +212,36 @@ contains
     type(text_file_t) :: tf
     character(len=:), allocatable :: text
     integer :: k
+    character(len=200), allocatable :: control(:)
+    allocate (control(0))
     associate (r => deck%run)
       call results_group(o%h5, 'run', g)
-      call h5_write_attr(g, 'time_step', r%time_step)
-      call h5_write_attr(g, 'number_of_steps', r%number_of_steps)
-      call h5_write_attr(g, 'final_time', r%final_time)
-      call h5_write_attr(g, 'theta', r%theta)
-      call h5_write_attr(g, 'detection_frequency', r%detection_frequency)
-      call h5_write_attr(g, 'nlgs_check', trim(r%nlgs_check))
-      call h5_write_attr(g, 'nlgs_tolerance', r%nlgs_tolerance)
-      call h5_write_attr(g, 'nlgs_relaxation', r%nlgs_relaxation)
-      call h5_write_attr(g, 'nlgs_sweeps_per_check', r%nlgs_sweeps_per_check)
-      call h5_write_attr(g, 'nlgs_max_checks', r%nlgs_max_checks)
-      call h5_write_attr(g, 'nlgs_order', trim(r%nlgs_order))
-      call h5_write_attr(g, 'nlgs_seed', r%nlgs_seed)
-      call h5_write_attr(g, 'nlgs_unconverged', trim(r%nlgs_unconverged))
-      call h5_write_attr(g, 'output_dof_every', r%output_dof_every)
-      call h5_write_attr(g, 'output_vtk_every', r%output_vtk_every)
-      call h5_write_attr(g, 'output_vtk_disks', trim(r%output_vtk_disks))
-      call h5_write_attr(g, 'output_vtk_precision', trim(r%output_vtk_precision))
-      call h5_write_attr(g, 'output_hdf5_every', r%output_hdf5_every)
-      call h5_write_attr(g, 'progress_every', r%progress_every)
-      call h5_write_attr(g, 'driven_start', trim(r%driven_start))
-      call h5_write_attr(g, 'cohesive_damage', trim(r%cohesive_damage))
-      call h5_write_attr(g, 'plane', trim(r%plane))
-      call h5_write_attr(g, 'newton_tolerance', r%newton_tolerance)
-      call h5_write_attr(g, 'newton_max_iterations', r%newton_max_iterations)
-      call h5_write_attr(g, 'linear_solver', trim(r%linear_solver))
+      call put_r('time_step', r%time_step)
+      call put_i('number_of_steps', r%number_of_steps)
+      call h5_write_attr(g, 'final_time', r%final_time)       ! -1: not given
+      if (r%final_time >= 0.0_wp) call put_r('final_time', r%final_time)
+      call put_r('theta', r%theta)
+      call put_i('detection_frequency', r%detection_frequency)
+      call put_s('nlgs_check', trim(r%nlgs_check))
+      call put_r('nlgs_tolerance', r%nlgs_tolerance)
+      call put_r('nlgs_relaxation', r%nlgs_relaxation)
+      call put_i('nlgs_sweeps_per_check', r%nlgs_sweeps_per_check)
+      call put_i('nlgs_max_checks', r%nlgs_max_checks)
+      call put_s('nlgs_order', trim(r%nlgs_order))
+      call put_i('nlgs_seed', r%nlgs_seed)
+      call put_s('nlgs_unconverged', trim(r%nlgs_unconverged))
+      call put_i('output_dof_every', r%output_dof_every)
+      call put_i('output_vtk_every', r%output_vtk_every)
+      call put_s('output_vtk_disks', trim(r%output_vtk_disks))
+      call put_s('output_vtk_precision', trim(r%output_vtk_precision))
+      call put_i('output_hdf5_every', r%output_hdf5_every)
+      call put_i('progress_every', r%progress_every)
+      call put_s('driven_start', trim(r%driven_start))
+      call put_s('cohesive_damage', trim(r%cohesive_damage))
+      call put_s('plane', trim(r%plane))
+      call put_r('newton_tolerance', r%newton_tolerance)
+      call put_i('newton_max_iterations', r%newton_max_iterations)
+      call put_s('linear_solver', trim(r%linear_solver))
     end associate
     text = ''
     if (allocated(deck%command_file)) text = deck%command_file
@@ -240,7 +260,33 @@ contains
     else
       call h5_write_dataset(g, 'settings', [character(len=1) ::])
     end if
+    ! Every setting as 'keyword value', a COMMAND.DAT the run could be repeated with.
+    call h5_write_dataset(g, 'control', control)
     call h5_close_group(g)
+
+  contains
+
+    subroutine put_s(key, value)
+      character(len=*), intent(in) :: key, value
+      call h5_write_attr(g, key, value)
+      control = [character(len=200) :: control, key//' '//value]
+    end subroutine put_s
+
+    subroutine put_i(key, value)
+      character(len=*), intent(in) :: key
+      integer, intent(in) :: value
+      call h5_write_attr(g, key, value)
+      control = [character(len=200) :: control, key//' '//itoa(value)]
+    end subroutine put_i
+
+    subroutine put_r(key, value)
+      character(len=*), intent(in) :: key
+      real(wp), intent(in) :: value
+      character(len=32) :: buf
+      call h5_write_attr(g, key, value)
+      write (buf, '(es23.16)') value
+      control = [character(len=200) :: control, key//' '//trim(adjustl(buf))]
+    end subroutine put_r
   end subroutine write_run_group
 
   !> /contactors: the geometry of every contactor: of a rigid body in its
@@ -430,7 +476,7 @@ contains
       call pvd_add(o%pvd, sc%time, 'shapes_'//num//'.vtu', part=o%part_shapes)
     end if
     if (o%part_meshes >= 0) then
-      call write_meshes_vtu(o%display//'/meshes_'//num//'.vtu', sc, o%vtk_single)
+      call write_meshes_vtu(o%display//'/meshes_'//num//'.vtu', sc, o%vtk_single, o%material_names)
       call pvd_add(o%pvd, sc%time, 'meshes_'//num//'.vtu', part=o%part_meshes)
     end if
     if (o%part_interfaces >= 0) then
@@ -477,15 +523,18 @@ contains
   !> Meshed bodies as an unstructured grid in the current configuration:
   !> point data displacement and velocity; cell data (Gauss-point averages)
   !> stress tensor (xx, yy, zz, xy as a symmetric 3x3), von Mises stress,
-  !> equivalent plastic strain, material, body.
-  subroutine write_meshes_vtu(path, sc, single)
+  !> equivalent plastic strain, material, body; field data material_names
+  !> (the bulk behaviour of material k is entry k).
+  subroutine write_meshes_vtu(path, sc, single, material_names)
     character(len=*), intent(in) :: path
     type(scene_t), intent(in) :: sc
     logical, intent(in) :: single
+    character(len=*), intent(in) :: material_names(:)
     type(vtu_t) :: w
     real(wp), allocatable :: gp(:, :), stress(:, :), vm(:), p(:), avg(:)
     integer(ik), allocatable :: conn(:), offs(:), types(:), body(:), mat(:)
-    integer :: e, b, ng, nn
+    integer, allocatable :: piece(:)
+    integer :: e, b, ng, nn, nfrag
     associate (m => sc%meshes)
       allocate (gp(size(m%gp, 1), size(m%gp, 2)))
       call mailx_gauss_values(m, gp)
@@ -510,22 +559,29 @@ contains
         end do
       end do
       call vtu_begin(w, path, m%nnodes, m%nelem, time=sc%time, single=single)
+      call vtu_field_strings(w, 'material_names', material_names)
       call vtu_points(w, m%ref + m%x)
       call vtu_cells(w, conn, offs, types)
-      call vtu_point_data(w, 'displacement', m%x)
-      call vtu_point_data(w, 'velocity', m%v)
+      ! 3 components (z = 0): ParaView's Warp By Vector and glyphs need them.
+      call vtu_point_data(w, 'displacement', xyz(m%x))
+      call vtu_point_data(w, 'velocity', xyz(m%v))
       call vtu_cell_data(w, 'stress', stress)
       call vtu_cell_data(w, 'von_mises', vm)
       call vtu_cell_data(w, 'plastic_strain', p)
       call vtu_cell_data(w, 'material', mat)
       call vtu_cell_data(w, 'body', body)
+      if (sc%cracks%nedges > 0) then        ! fragment of each element (1 .. fragments)
+        call cracks_fragments(sc%cracks, sc%meshes, piece, nfrag)
+        call vtu_cell_data(w, 'fragment', int(piece(body), ik))
+      end if
       call vtu_end(w)
     end associate
   end subroutine write_meshes_vtu
 
   !> Cohesive interfaces as lines (the candidate edge, current configuration)
   !> with cell data beta (the lowest of its points), broken (1/0), damaged and
-  !> family (index in /mesh interface_families).
+  !> family (index in /mesh interface_families; field data family_names
+  !> names family k as entry k).
   subroutine write_interfaces_vtu(path, sc, single)
     character(len=*), intent(in) :: path
     type(scene_t), intent(in) :: sc
@@ -548,6 +604,7 @@ contains
         family(e) = int(cr%edge_family(e), ik)
       end do
       call vtu_begin(w, path, 2 * ne, ne, time=sc%time, single=single)
+      call vtu_field_strings(w, 'family_names', cr%family_names)
       call vtu_points(w, pts)
       call vtu_cells_fixed(w, nodes, vtk_line)
       call vtu_cell_data(w, 'beta', beta)
@@ -907,6 +964,14 @@ contains
     end associate
   end function gpv_records
 
+  !> 2-D vectors (2, n) as 3-D ones (3, n) with z = 0.
+  pure function xyz(v) result(r)
+    real(wp), intent(in) :: v(:, :)
+    real(wp) :: r(3, size(v, 2))
+    r(1:2, :) = v
+    r(3, :) = 0.0_wp
+  end function xyz
+
   !> Von Mises equivalent stress of a stress (xx, yy, xy, zz).
   pure real(wp) function von_mises(s)
     real(wp), intent(in) :: s(4)
@@ -971,9 +1036,35 @@ contains
     call h5_write_dataset(gc, 'edge_beta', cracks_edge_beta(sc%cracks))
     call h5_write_dataset(gc, 'fragment_of_body', int(piece, ik))
     call h5_write_attr(gc, 'fragments', nfrag)
+    call fragments_group(gc, sc, piece, nfrag)
     call h5_close_group(gc)
     call h5_close_group(g)
   end subroutine cracks_snapshot
+
+  !> Group fragments under the cracks of a snapshot: per fragment (fracas_cracks
+  !> cracks_fragment_stats) its bodies, elements, mass, centre, velocity, kinetic
+  !> energy, second moments, polar and principal moments, major-axis angle.
+  subroutine fragments_group(gc, sc, piece, nfrag)
+    integer(hid_t), intent(in) :: gc
+    type(scene_t), intent(in) :: sc
+    integer, intent(in) :: piece(:), nfrag
+    type(fragments_t) :: f
+    integer(hid_t) :: g
+    call cracks_fragment_stats(sc%meshes, piece, nfrag, f)
+    call h5_create_group(gc, 'fragments', g)
+    call h5_write_attr(g, 'count', nfrag)
+    call h5_write_dataset(g, 'bodies', int(f%bodies, ik))
+    call h5_write_dataset(g, 'elements', int(f%elements, ik))
+    call h5_write_dataset(g, 'mass', f%mass)
+    call h5_write_dataset(g, 'centre', f%centre)
+    call h5_write_dataset(g, 'velocity', f%velocity)
+    call h5_write_dataset(g, 'kinetic_energy', f%kinetic)
+    call h5_write_dataset(g, 'second_moments', f%moments)
+    call h5_write_dataset(g, 'polar_moment', f%polar)
+    call h5_write_dataset(g, 'principal_moments', f%principal)
+    call h5_write_dataset(g, 'principal_angle', f%angle)
+    call h5_close_group(g)
+  end subroutine fragments_group
 
   !> The meshed bodies' state in the newest snapshot: nodal displacements and
   !> velocities (2, nodes), the force of the velocity drives on their nodes
@@ -1074,7 +1165,7 @@ contains
       rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
       sc%meshes%plastic_work, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
       real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds, &
-      real(rep%nlgs%updates, wp), rep%velocity_seconds]
+      real(rep%nlgs%updates, wp), rep%velocity_seconds, real(fragment_count(sc), wp)]
     ! A sound state can still give non-finite diagnostics (an NLGS residual of a
     ! law stiffness near the largest double): the step's results are nonsense.
     do k = 1, n_series
@@ -1087,6 +1178,14 @@ contains
     call flush_if_due(o)
     call clocked(o, k_series, t0)
   end subroutine output_series
+
+  !> Fragments of the meshed bodies now (0 without cohesive interfaces).
+  integer function fragment_count(sc)
+    type(scene_t), intent(in) :: sc
+    integer, allocatable :: piece(:)
+    fragment_count = 0
+    if (sc%cracks%nedges > 0) call cracks_fragments(sc%cracks, sc%meshes, piece, fragment_count)
+  end function fragment_count
 
   !> Flush the POSTPRO files every flush_interval seconds (fracas.h5 keeps its own clock).
   subroutine flush_if_due(o)
@@ -1150,6 +1249,7 @@ contains
     end if
     ! An error while closing stops the run; its clean-up closes again with
     ! complete = 0, going on past HDF5 errors (fracas_h5: check).
+    if (o%h5_open) call h5_describe(o%h5%fid)    ! units and description on every dataset
     if (o%h5_open) call results_close(o%h5, complete, end_reason)
     o%h5_open = .false.
     call postpro_close(o%pp)

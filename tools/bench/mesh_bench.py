@@ -166,12 +166,13 @@ def run_fracas(fracas, args, out_dir):
 def read_h5(out_dir):
     """Totals and per-step figures of a run's fracas.h5: CPU seconds of each part
     (the wall-clock series times loop_cpu / loop wall), setup and reading."""
-    import h5py
-    with h5py.File(out_dir / "OUTBOX" / "fracas.h5", "r") as f:
-        a = {k: float(v) for k, v in f.attrs.items() if k.endswith("seconds")}
-        sweeps_per_check = int(f["run"].attrs["nlgs_sweeps_per_check"])
-        s = {k: f["series"][k][:] for k in ("contacts", "active_contacts", "sweeps", "contact_updates",
-                                            "step_time", "velocity_time", *(p + "_time" for p in PARTS))}
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from fracas_tools.results import Run         # the one reader of fracas.h5
+    with Run(out_dir) as run:
+        a = {k: float(v) for k, v in run.attrs.items() if k.endswith("seconds")}
+        sweeps_per_check = int(run.file["run"].attrs["nlgs_sweeps_per_check"])
+        s = {k: np.asarray(run.series[k], dtype=float) for k in ("contacts", "active_contacts", "sweeps",
+             "contact_updates", "step_time", "velocity_time", *(p + "_time" for p in PARTS))}
     s["sweeps_time"] = s["solve_time"] - s["velocity_time"]
     scale = a["loop_cpu_seconds"] / a["loop_seconds"]
     nsteps = len(s["step_time"])

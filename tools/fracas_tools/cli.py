@@ -213,12 +213,18 @@ def build_parser():
 
 
 def main(argv=None):
-    from .fortran_io import DatboxError
     args = build_parser().parse_args(argv)
+    return run_main(lambda: args.func(args), f"fracas-tools {args.command}")
+
+
+def run_main(main, prog):
+    """Run a command-line entry point; bad input (a deck, a file, a value) is reported as
+    'PROG: error: message' on stderr with status 2, not as a traceback."""
+    from .fortran_io import DatboxError
     try:
-        return args.func(args)
-    except (DatboxError, FileNotFoundError, ValueError, OSError) as e:
-        print(f"fracas-tools {args.command}: error: {e}", file=sys.stderr)
+        return main()
+    except (DatboxError, FileNotFoundError, ValueError, OSError, KeyError) as e:
+        print(f"{prog}: error: {e}", file=sys.stderr)
         return 2
 
 

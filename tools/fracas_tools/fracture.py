@@ -21,7 +21,7 @@ import numpy as np
 
 from .results import Run, _attr
 
-__all__ = ["MeshRun", "MeshState", "von_mises"]
+__all__ = ["MeshRun", "MeshState", "von_mises", "plot_fragment_sizes"]
 
 
 def _rows(a, ncols):
@@ -115,7 +115,7 @@ class MeshRun:
         cracks = None
         if "cracks" in g:
             c = g["cracks"]
-            cracks = {k: np.asarray(c[k][()]) for k in c}
+            cracks = {k: np.asarray(c[k][()]) for k in c if hasattr(c[k], "shape")}   # datasets (not fragments/)
             cracks["points"] = _rows(cracks["points"], 2) if cracks["points"].size else np.zeros((0, 2))
             cracks["segments"] = (np.asarray(cracks["segments"], dtype=int).reshape(-1, 2) - 1
                                   if cracks["segments"].size else np.zeros((0, 2), dtype=int))
@@ -175,6 +175,22 @@ class MeshRun:
             lengths.append(float(np.asarray(g["cracks/crack_length"][()])[0]))
         return self.times.copy(), np.array(tips).reshape(-1, 2), np.array(lengths)
 
+    def fragments(self, which=-1):
+        """The fragments of a snapshot (index, negative from the end, or group name) as
+        {name: array}, one row per fragment (doc/output_layout.md §5): bodies,
+        elements, mass, centre (nf, 2), velocity (nf, 2), kinetic_energy,
+        second_moments (nf, 3: Jxx, Jyy, Jxy), polar_moment, principal_moments
+        (nf, 2), principal_angle. Empty dict when the snapshot has none."""
+        name = which if isinstance(which, str) else self.snapshot_names[which]
+        g = self.run.file["snapshots"][name]
+        if "cracks/fragments" not in g:
+            return {}
+        f = g["cracks/fragments"]
+        out = {k: np.asarray(f[k][()]) for k in f}
+        for k, nc in (("centre", 2), ("velocity", 2), ("second_moments", 3), ("principal_moments", 2)):
+            out[k] = _rows(out[k], nc)
+        return out
+
     def close(self):
         self.run.close()
 
@@ -183,3 +199,42 @@ class MeshRun:
 
     def __exit__(self, *a):
         self.close()
+
+
+def plot_fragment_sizes(mr, out, max_curves=6):
+    """The fragment-size distribution over time: the number of fragments per step
+    (series fragments) and, for up to max_curves snapshots, the fraction of fragments
+    of mass at least m against m / total mass. Returns the PNG path."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from pathlib import Path
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4))
+    s = mr.series
+    if "fragments" in s and "time" in s:
+        a1.step(s["time"], s["fragments"], where="post")
+    a1.set_xlabel("time")
+    a1.set_ylabel("fragments")
+    a1.grid(True, alpha=0.3)
+    names = mr.snapshot_names
+    picks = sorted(set(np.linspace(0, len(names) - 1, min(len(names), max_curves)).round().astype(int))) \
+        if names else []
+    for i in picks:
+        fr = mr.fragments(i)
+        if not fr:
+            continue
+        m = np.sort(fr["mass"])[::-1]
+        a2.step(m / m.sum(), np.arange(1, len(m) + 1) / len(m), where="post",
+                label=f"t = {mr.times[i]:.3g} ({len(m)})")
+    a2.set_xscale("log")
+    a2.set_xlabel("fragment mass / total mass")
+    a2.set_ylabel("fraction of fragments at least that heavy")
+    a2.grid(True, alpha=0.3)
+    if a2.lines:
+        a2.legend(fontsize=8)
+    fig.tight_layout()
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out

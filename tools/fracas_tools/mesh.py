@@ -187,7 +187,10 @@ def mesh_from_gmsh():
             for tag, nodes in zip(et, en):
                 elems.append((int(tag), kind, nodes, ent))
     if not elems:
-        raise ValueError("gmsh's model has no 2D element (mesh it first: gmsh.model.mesh.generate(2))")
+        raise ValueError("gmsh's model has no 2D element: a .geo must be meshed (gmsh.model.mesh.generate(2)), "
+                         "and gmsh writes into a .msh with physical groups (e.g. Physical Curves for the loads) only "
+                         "their elements: give the surfaces a Physical Surface (one per phase), or save with "
+                         "Mesh.SaveAll = 1")
     elems.sort(key=lambda e: e[0])
 
     phase_of_surface = {}

@@ -375,6 +375,7 @@ def summary(run):
         "version": run.attrs.get("version"),
         "complete": run.complete,
         "bodies": run.n_bodies,
+        "meshed bodies": len(run.file["mesh"]["body_first_node"]) - 1 if "mesh" in run.file else 0,
         "time step [s]": run.attrs.get("time_step"),
         "theta": run.attrs.get("theta"),
         "steps": n_steps,
@@ -715,7 +716,7 @@ def report(case_dir, h5=None, out_dir=None, snapshot=-1, window=None, x_is="auto
         lines += [f"# Fracas run report: {case_dir.resolve().name}", "",
                   f"- results file: `{h5path}`",
                   f"- program: {run.attrs.get('program', '?')} {run.attrs.get('version', '')}",
-                  f"- bodies: {run.n_bodies}, snapshots: {run.n_snapshots}, "
+                  f"- bodies: {run.n_bodies} rigid{_meshed_bodies(run)}, snapshots: {run.n_snapshots}, "
                   f"snapshot X read as {run.x_is}"]
         if not run.complete:
             lines += ["", "> **Warning: the run is not complete** (root attribute `complete` = 0):"
@@ -734,7 +735,11 @@ def report(case_dir, h5=None, out_dir=None, snapshot=-1, window=None, x_is="auto
             p = fn(run, out_dir / name)
             if p is not None:
                 lines += [f"### {title}", "", f"![{title}]({name})", ""]
-        if run.n_snapshots:
+        if "mesh" in run.file:
+            lines += _cracks_section(run, out_dir, snapshot)
+        if run.n_snapshots and run.n_bodies == 0:
+            pass                     # meshed bodies only: no grains, no microstructure
+        elif run.n_snapshots:
             snap = run.snapshot(snapshot)
             mask = particle_mask(run)
             lines += ["## Microstructure", ""]
@@ -777,12 +782,67 @@ def report(case_dir, h5=None, out_dir=None, snapshot=-1, window=None, x_is="auto
                 lines += ["No grains found (all bodies look like walls or driven bodies).", ""]
         else:
             lines += ["## Microstructure", "", "No snapshot in the file.", ""]
-        if run.deck() is None:
+        if run.n_bodies and run.deck() is None:
             lines += ["Note: the case's DATBOX was not found or does not match the file; "
                       "bodies are drawn as disks of radius avrd and walls are guessed.", ""]
     path = out_dir / "report.md"
     path.write_text("\n".join(lines) + "\n")
     return path
+
+
+def _meshed_bodies(run):
+    """', M meshed (E elements)' for a run with meshed bodies, else ''."""
+    if "mesh" not in run.file:
+        return ""
+    g = run.file["mesh"]
+    return (f", {len(g['body_first_node']) - 1} meshed ({len(g['element_first_node']) - 1} elements, "
+            f"{len(g['reference'])} nodes)")
+
+
+def _cracks_section(run, out_dir, snapshot):
+    """Report lines on the cracks and fragments of a meshed run, with a plot of the
+    crack length over time."""
+    from .fracture import MeshRun
+    mr = MeshRun(run)
+    s = run.series
+    lines = ["## Cracks and fragments", ""]
+    if "crack_length" not in s or not len(s["crack_length"]):
+        return lines + ["No crack series in the file.", ""]
+    table = {"crack length (broken interfaces) [length]": s["crack_length"][-1],
+             "damaged length [length]": s["damaged_length"][-1] if "damaged_length" in s else None,
+             "broken interface edges": int(s["broken_interfaces"][-1]) if "broken_interfaces" in s else None,
+             "energy dissipated by damage [energy]": s["damage_dissipated"][-1] if "damage_dissipated" in s
+             else None}
+    if mr.snapshot_names:
+        st = mr.state(snapshot)
+        if st.cracks is not None:
+            table[f"fragments (snapshot at step {st.step})"] = st.cracks["fragments"]
+            per = np.atleast_1d(st.cracks.get("broken_length_per_family", []))
+            for name, v in zip(mr.families, per):
+                table[f"broken length, family {name} (step {st.step}) [length]"] = v
+    lines += [_vertical_table(table), ""]
+    plt = _plt()
+    t, tl = _time_axis(run)
+    fig, ax = plt.subplots(figsize=(6.5, 3.5))
+    ax.plot(t, s["crack_length"], label="crack length")
+    if "damaged_length" in s:
+        ax.plot(t, s["damaged_length"], "--", label="damaged length")
+    ax.set_xlabel(tl)
+    ax.set_ylabel("length")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    _save(fig, out_dir / "cracks.png")
+    from .fracture import plot_fragment_sizes
+    plot_fragment_sizes(mr, out_dir / "fragments.png")
+    lines += ["![Crack length](cracks.png)", "", "### Fragments", "",
+              "Number of fragments over time and the fragment-mass distribution at a few snapshots "
+              "(per-fragment mass, centre, velocity, kinetic energy, inertia: "
+              "`MeshRun.fragments(snapshot)`, `/snapshots/N/cracks/fragments` in fracas.h5).", "",
+              "![Fragments](fragments.png)", ""]
+    return lines + [
+                    "Pictures of the cracks: `tools/fracture/plot_cracks.py RUN OUT.png`, or DISPLAY/fracas.pvd "
+                    "in ParaView (`tools/paraview/render_frame.py`).", ""]
 
 
 # --------------------------------------------------------------------------------------

@@ -130,7 +130,7 @@ class Run:
         if "series" in f:
             for k, ds in f["series"].items():
                 if isinstance(ds, h5py.Dataset) and ds.ndim == 1:
-                    self.series[k] = np.asarray(ds[()], dtype=float)
+                    self.series[k] = np.asarray(ds[()])     # counts and flags int32, the rest float64
         if self.series:
             n = min(len(v) for v in self.series.values())
             self.series = {k: v[:n] for k, v in self.series.items()}

@@ -29,6 +29,8 @@ import numpy as np
 
 STATUS_NAMES = ["noctc", "stick", "slifw", "slibw", "noact", "Cnctc", "Cstck", "Cslfw", "Cslbw"]
 INTER_NAMES = ["DKDKx", "DKJCx", "DKKDx", "DKPLx", "PLPLx", "PLJCx"]
+INTEGER_SERIES = {"step", "contacts", "active_contacts", "sweeps", "converged", "newton_iterations",
+                  "broken_interfaces", "damaged_interfaces"}
 SERIES = ["step", "time", "contacts", "sweeps", "converged", "residual_natural_map", "quad_dv",
           "maxm_dv", "kinetic_energy", "work_gravity", "work_driven", "dissipated",
           "balance_error", "mean_overlap", "max_overlap", "wall_time"]
@@ -181,7 +183,10 @@ def make_h5(path, nx=10, ny=6, radius=0.01, n_steps=200, snapshot_every=50, time
         gs = f.create_group("series")
         gs.attrs["columns"] = ",".join(names)
         for s in names:
-            gs.create_dataset(s, data=series[s], maxshape=(None,))
+            data = np.asarray(series[s])
+            if s in INTEGER_SERIES:      # as fracas writes them (doc/output_layout.md §1.3)
+                data = data.astype(np.int32)
+            gs.create_dataset(s, data=data, maxshape=(None,))
         gsn = f.create_group("snapshots")
         snap_steps = [s for s in steps if s % snapshot_every == 0]
         if not snap_steps or snap_steps[0] != 1:

@@ -88,4 +88,5 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    from fracas_tools.cli import run_main  # bad input: a message, not a traceback
+    sys.exit(run_main(main, "plot_cracks.py"))

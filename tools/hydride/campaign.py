@@ -8,6 +8,8 @@
     python3 tools/hydride/campaign.py one --root runs/hydride --index $SLURM_ARRAY_TASK_ID
     # the list of cases (index seed bonding h)
     python3 tools/hydride/campaign.py list
+    # a dry run of one case: its deck generated and checked (fracas --check), nothing run
+    python3 tools/hydride/campaign.py one --root /tmp/dry --index 0 --dry-run
     # summaries again (summary.json, crack.png) of the cases already run, nothing rerun
     python3 tools/hydride/campaign.py summarize --root runs/hydride
 
@@ -139,6 +141,8 @@ def main(argv=None):
     p.add_argument("--jobs", type=int, default=1)
     p.add_argument("--fracas")
     p.add_argument("--force", action="store_true")
+    p.add_argument("--dry-run", action="store_true",
+                   help="generate the decks and check them with fracas --check, run nothing")
     a = p.parse_args(argv)
     cases = grid(a.seeds, a.bondings, a.sizes)
     if a.what == "list":
@@ -162,6 +166,14 @@ def main(argv=None):
     # decks first (gmsh in the main thread), then the runs (jobs at a time), then the summaries
     todo = [(c, generate_case(a.root, *c, a)) for c in cases]
     todo = [(c, d) for c, d in todo if d is not None]
+    if a.dry_run:          # the interpreter, gmsh, the generator and fracas work: nothing is run
+        for c, d in todo:
+            p = subprocess.run([fracas, "--check", str(d)], capture_output=True, text=True)
+            if p.returncode != 0:
+                raise SystemExit(f"{d}: fracas --check failed: {p.stderr.strip()}")
+            st = case_settings(c[2], a)
+            print(f"{case_name(*c)}: {p.stdout.strip()}, dt {st['dt']:.3g} s; deck in {d}", flush=True)
+        return 0
 
     def run(item):
         c, d = item
@@ -183,4 +195,5 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    from fracas_tools.cli import run_main  # bad input: a message, not a traceback
+    sys.exit(run_main(main, "campaign.py"))

@@ -62,7 +62,7 @@ def flat(s):
         r[f"damage_{f}"] = e["damage_per_family"][f]
     r.update(friction=e["friction_and_numerical"], kinetic=e["kinetic"], elastic=e["elastic"],
              balance_rel=e["relative_balance_error"], cpu_s=s.get("cpu_seconds_process", s["cpu_seconds"]),
-             step_cpu_s=s["cpu_seconds"], wall_s=s.get("wall_seconds", float("nan")),
+             step_cpu_s=s["cpu_seconds"], steps_wall_s=s.get("steps_wall_seconds", float("nan")), wall_s=s.get("wall_seconds", float("nan")),
              load=s.get("load_average", float("nan")), sweeps=s.get("sweeps", float("nan")))
     return r
 
@@ -256,4 +256,5 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    from fracas_tools.cli import run_main  # bad input: a message, not a traceback
+    sys.exit(run_main(main, "gather.py"))

@@ -453,7 +453,8 @@ def main(argv=None):
     p.add_argument("--alert", type=float, help="alert distance (default: choose_alert)")
     p.add_argument("--steps", type=int, default=400)
     p.add_argument("--output-every", type=int, default=20)
-    p.add_argument("--vtk-every", type=int, default=0)
+    p.add_argument("--vtk-every", type=int, default=0,
+                   help="a DISPLAY frame (ParaView) every N steps and at the last one (0: no DISPLAY)")
     p.add_argument("--theta", type=float, default=0.5)
     p.add_argument("--nlgs-tolerance", type=float, default=1e-4)
     p.add_argument("--cohesion", nargs="*", default=[], metavar="KEY=VALUE",
@@ -474,4 +475,5 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    from fracas_tools.cli import run_main  # bad input: a message, not a traceback
+    sys.exit(run_main(main, "hydride_plate.py"))

@@ -59,6 +59,9 @@ class PlateRun:
             self.edge_family = np.array(self.families)[m["interface_edge_family"] - 1]
             self.edge_length = m["interface_edge_length"]
             self.series = run.series
+            # CPU seconds of the process (reading, setup, time loop; the loop's only at a normal end)
+            cpu = [run.attrs.get(k) for k in ("read_cpu_seconds", "setup_cpu_seconds", "loop_cpu_seconds")]
+            self.cpu_seconds = float(sum(cpu)) if all(c is not None for c in cpu) else float("nan")
             snap = run.snapshot(snapshot if snapshot < 0 else snapshot - 1)
             self.step, self.time = snap.step, snap.time
             self.X = snap.mesh["X"]
@@ -233,7 +236,8 @@ def summary(case_dir, deck_dir=None):
                 contact_points=run.info["contact_points"], steps=int(s["step"][-1]),
                 complete=run.complete, crack={k: v for k, v in crack.items() if k != "path_edges"},
                 peak_stress=float(fd["stress"][i]), strain_at_peak=float(fd["strain"][i]),
-                energies=en, cpu_seconds=float(np.sum(s["step_time"])),
+                energies=en, cpu_seconds=run.cpu_seconds,             # fracas's own CPU time
+                steps_wall_seconds=float(np.sum(s["step_time"])),      # wall time of the steps (a loaded machine inflates it)
                 newton_iterations=float(np.mean(s["newton_iterations"])),
                 sweeps=float(np.mean(s["sweeps"])))
 
@@ -311,4 +315,5 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    from fracas_tools.cli import run_main  # bad input: a message, not a traceback
+    sys.exit(run_main(main, "hydride_post.py"))

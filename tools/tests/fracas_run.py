@@ -44,3 +44,12 @@ def copy_deck(name, dest):
 def run(*args, timeout=600, **kw):
     """Run fracas with args; returns the CompletedProcess (text output)."""
     return subprocess.run([fracas_bin(), *map(str, args)], capture_output=True, text=True, timeout=timeout, **kw)
+
+
+def run_example(tmp_path_factory, name, *settings):
+    """Run the example deck test_cases/examples/NAME (quietly, with the --set SETTINGS
+    KEY=VALUE) into a fresh temporary folder; returns that folder."""
+    out = tmp_path_factory.mktemp(name)
+    p = run("-q", "--output", out, *(a for s in settings for a in ("--set", s)), ROOT / "test_cases/examples" / name)
+    assert p.returncode == 0, p.stderr
+    return out

@@ -55,10 +55,11 @@ def frames(out):
 
 @pytest.fixture(scope="module")
 def mixed(tmp_path_factory):
-    """mixed_disk_polygon (7 disks, 6 polygons, walls): 20 steps, VTK and snapshots every 5."""
+    """mixed_disk_polygon (7 disks, 6 polygons, walls): 20 steps, VTK and snapshots every 5,
+    disks as points with their radius (output_vtk_disks points; the default, polygons, below)."""
     out = tmp_path_factory.mktemp("mixed")
     p = run("-q", "--output", out, "--set", "time_step=1e-3", "--set", "number_of_steps=20",
-            "--set", "output_vtk_every=5", "--set", "output_hdf5_every=5", lmgc90_decks() / "mixed_disk_polygon")
+            "--set", "output_vtk_every=5", "--set", "output_vtk_disks=points", "--set", "output_hdf5_every=5", lmgc90_decks() / "mixed_disk_polygon")
     assert p.returncode == 0, p.stderr
     return out
 
@@ -150,7 +151,7 @@ def test_disks_as_polygons_in_double_precision(tmp_path):
 def test_drum_is_an_open_circle(tmp_path):
     out = tmp_path / "drum"
     p = run("-q", "--output", out, "--set", "time_step=1e-3", "--set", "number_of_steps=2",
-            "--set", "output_vtk_every=1", lmgc90_decks() / "drum")
+            "--set", "output_vtk_every=1", "--set", "output_vtk_disks=points", lmgc90_decks() / "drum")
     assert p.returncode == 0, p.stderr
     g = read(frames(out)[max(frames(out))]["shapes"])
     (ctype, pts), = cells(g)

@@ -27,7 +27,7 @@ def test_overwrite_clears_what_the_new_run_writes(tmp_path):
     (deck / "DATBOX" / "POSTPRO.DAT").write_text(POSTPRO)
     out = tmp_path / "out"
     first = ["--set", "time_step=1e-3", "--set", "number_of_steps=40", "--set", "output_dof_every=4",
-             "--set", "output_vtk_every=10", "--set", "output_hdf5_every=5"]
+             "--set", "output_vtk_every=10", "--set", "output_hdf5_every=5", "--set", "output_vtk_disks=points"]
     p = run("-q", "--output", out, *first, deck)
     assert p.returncode == 0, p.stderr
     assert len([n for n in names(out / "OUTBOX") if n.startswith("DOF.OUT.")]) == 10

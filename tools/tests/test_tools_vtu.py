@@ -30,7 +30,7 @@ def run(tmp_path_factory):
         pytest.skip("no fracas binary built")
     out = tmp_path_factory.mktemp("vtu")
     subprocess.run([exe, "-q", "--overwrite", "--output", str(out), "--set", "number_of_steps=40",
-                    "--set", "output_vtk_every=20", "--set", "output_hdf5_every=20",
+                    "--set", "output_vtk_every=20", "--set", "output_hdf5_every=20", "--set", "output_vtk_disks=points",
                     str(ROOT / "test_cases" / "examples" / "demo_deposit")], check=True)
     return out
 

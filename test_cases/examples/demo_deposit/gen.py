@@ -7,7 +7,7 @@ dt = 1e-3 s, 1000 steps; VTK (DISPLAY/) and HDF5 snapshots every 10 steps. This 
 fracas_tools.generators.demo_deposit, written here as committed DATBOX files.
 
     /usr/bin/python3 test_cases/examples/demo_deposit/gen.py      # rewrites ./DATBOX
-    build/release/bin/fracas test_cases/examples/demo_deposit     # then open DISPLAY/fracas.pvd
+    build/release/bin/fracas --output build/demo test_cases/examples/demo_deposit   # then open build/demo/DISPLAY/fracas.pvd
 """
 
 import sys

@@ -9,7 +9,7 @@ touches later, so it is never glued. dt = 5e-4 s, 2000 steps (1 s); VTK (DISPLAY
 HDF5 snapshots every 20 steps.
 
     /usr/bin/python3 test_cases/examples/glued_wall/gen.py      # rewrites ./DATBOX
-    build/release/bin/fracas test_cases/examples/glued_wall     # then open DISPLAY/fracas.pvd
+    build/release/bin/fracas --output build/glued_wall test_cases/examples/glued_wall   # then open build/glued_wall/DISPLAY/fracas.pvd
 
 In ParaView colour the contact points (contacts_*.vtu, part 1) by `beta` (1 sound, 0
 broken) or `broken`; fracas.h5 lists the broken interfaces in each snapshot

@@ -13,8 +13,8 @@ notch lips are left uncohesive. Plane strain, dt = 0.25 us, 200 us; VTK and HDF5
 every 8 us.
 
     /usr/bin/python3 test_cases/examples/notched_plate_impact/gen.py   # rewrites ./DATBOX
-    build/release/bin/fracas test_cases/examples/notched_plate_impact  # about a minute
-    paraview test_cases/examples/notched_plate_impact/DISPLAY/fracas.pvd
+    build/release/bin/fracas --output build/notched_plate_impact test_cases/examples/notched_plate_impact
+    paraview build/notched_plate_impact/DISPLAY/fracas.pvd             # about 30 s of run first
 
 In ParaView: meshes_*.vtu coloured by von_mises, interfaces_*.vtu by beta (1 sound,
 0 broken), cracks_*.vtu (the crack paths). The picture of doc/fracture.md comes from
@@ -25,8 +25,8 @@ from pathlib import Path
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "fracture"))
-from fractools import mp3_separation_opening, perturb_nodes, safe_alert, smooth_ramp  # noqa: E402
+sys.path.insert(0, str(HERE.parents[2] / "tools"))
+from fracas_tools.cohesive import mp3_separation_opening, perturb_nodes, see_alert, smooth_ramp  # noqa: E402
 
 E, NU, RHO = 32.0e9, 0.2, 2450.0
 GC, SMAX, CH_E = 3.0, 5.0e6, 50.0
@@ -50,7 +50,7 @@ def build():
     c = CH_E * E / LC
     case.add_law("czmgl", "MP3_CZM", dyfr=0.0, stfr=0.0, cn=c, ct=c, smax=SMAX, w=GC)
     d_c = mp3_separation_opening(GC, SMAX, c)
-    parts.add_see(case, "czmgl", alert=min(10.0 * d_c, 0.5 * safe_alert(mesh)))
+    parts.add_see(case, "czmgl", alert=see_alert(mesh, d_c))
     case.run.set(time_step=DT, final_time=T_END, plane="strain", nlgs_tolerance=1e-5,
                  nlgs_sweeps_per_check=5, output_hdf5_every=EVERY, output_dof_every=0,
                  output_vtk_every=EVERY, progress_every=0)
