@@ -1,0 +1,134 @@
+#!/usr/bin/env python3
+"""Run one of LMGC90's example decks (shared/lmgc90_examples/runs/<case>: DATBOX/ and
+LMGC90's results in lmgc90/) with the settings LMGC90's own script passed (lmgc90/run.json),
+and compare Fracas's last step with LMGC90's DOF.LAST / Vloc_Rloc.LAST.
+
+    lmgc90_example.py run CASE_DIR OUT [--set KEY=VALUE ...]
+    lmgc90_example.py compare OUT CASE_DIR [--pairs-differ N] [--sum-rn REL] [--mean-x REL]
+    lmgc90_example.py points CASE_DIR OUT [--vmax V]
+
+`compare` checks the contacts (candidate body and contactor, antagonist body and contactor)
+of both codes, at most N pairs in one code only, the summed normal reaction over the
+common contacts and the mean node displacement of meshed bodies. `points` checks a mesh
+deck's CLALp contacts: one per candidate point (LMGC90's rule), every point glued, no
+node faster than V (a scene at rest stays at rest).
+"""
+import argparse
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from fracas_tools.outbox import read_dof_file, read_vloc_rloc  # noqa: E402
+
+
+def run_control(run_json):
+    """Fracas's run control (COMMAND.DAT lines) from LMGC90's run.json."""
+    r = json.loads(Path(run_json).read_text())
+    solver, norm, tol, relax, it1, it2 = (str(x).strip() for x in r["exsolver"])
+    lines = [f"time_step {r['dt']}", f"number_of_steps {r['steps']}", f"theta {r['theta']}",
+             f"nlgs_check {norm}", f"nlgs_tolerance {tol}", f"nlgs_relaxation {relax}",
+             f"nlgs_sweeps_per_check {it1}", f"nlgs_max_checks {it2}",
+             "detection_approach no"]          # LMGC90 detects from the gap alone
+    if r.get("quickscramble"):
+        lines.append("nlgs_order shuffled")
+    return "\n".join(lines) + "\n"
+
+
+def cmd_run(a):
+    case, out = Path(a.case), Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "run.dat").write_text(run_control(case / "lmgc90" / "run.json"))
+    cmd = [a.fracas, "-q", "--overwrite", "--command", str(out / "run.dat"), "--output", str(out)]
+    for s in a.set or []:
+        cmd += ["--set", s]
+    return subprocess.run(cmd + [str(case)]).returncode
+
+
+def last(outbox, stem):
+    files = sorted(Path(outbox).glob(stem + ".OUT.*"), key=lambda p: int(p.suffix[1:]))
+    return files[-1]
+
+
+def contacts(path):
+    out = {}
+    for r in read_vloc_rloc(path).records:
+        out.setdefault((r.icdbdy, r.icdtac, r.ianbdy, r.iantac), []).append(r)
+    return out
+
+
+def mesh_x(path):
+    return np.concatenate([r.x for r in read_dof_file(path).records if r.model == "MAILx"] or [np.zeros((0, 2))])
+
+
+def report(name, ok, detail):
+    print(f"{'ok  ' if ok else 'FAIL'} {name}: {detail}")
+    return ok
+
+
+def cmd_compare(a):
+    ours_box, ref = Path(a.out) / "OUTBOX", Path(a.case) / "lmgc90"
+    co, cr = contacts(last(ours_box, "Vloc_Rloc")), contacts(ref / "Vloc_Rloc.LAST")
+    no, nr = sum(map(len, co.values())), sum(map(len, cr.values()))
+    only = len(set(co) ^ set(cr))
+    ok = report("contacts", only <= a.pairs_differ,
+                f"{no} ours, {nr} LMGC90's, {only} pairs in one code only (at most {a.pairs_differ})")
+    common = sorted(set(co) & set(cr))
+    if a.sum_rn is not None and common:
+        so = sum(r.rloc[1] for k in common for r in co[k])
+        sr = sum(r.rloc[1] for k in common for r in cr[k])
+        rel = abs(so - sr) / max(abs(sr), 1e-300)
+        ok &= report("summed rln/H", rel <= a.sum_rn, f"{so:.6e} ours, {sr:.6e} LMGC90's: {rel:.2e} apart "
+                     f"(tolerance {a.sum_rn:g})")
+    if a.mean_x is not None:
+        xo, xr = mesh_x(last(ours_box, "DOF")).mean(0), mesh_x(ref / "DOF.LAST").mean(0)
+        rel = np.abs(xo - xr).max() / max(np.abs(xr).max(), 1e-300)
+        ok &= report("mean node displacement", rel <= a.mean_x,
+                     f"{xo} ours, {xr} LMGC90's: {rel:.2e} of the larger component apart (tolerance {a.mean_x:g})")
+    return 0 if ok else 1
+
+
+def cl_points(bodies):
+    """Number of CLxxx candidate points of BODIES.DAT (each line, continuation lines too)."""
+    return sum(1 for ln in Path(bodies).read_text().splitlines() if ln[1:6] == "CLxxx")
+
+
+def cmd_points(a):
+    box = Path(a.out) / "OUTBOX"
+    recs = [r for rs in contacts(last(box, "Vloc_Rloc")).values() for r in rs if r.inter == "CLALp"]
+    per_point = {}
+    for r in recs:
+        per_point[(r.icdbdy, r.icdtac)] = per_point.get((r.icdbdy, r.icdtac), 0) + 1
+    npts = cl_points(Path(a.case) / "DATBOX" / "BODIES.DAT")
+    ok = report("one contact per candidate point", max(per_point.values(), default=0) == 1 and len(recs) == npts,
+                f"{len(recs)} CLALp contacts for {npts} candidate points, at most "
+                f"{max(per_point.values(), default=0)} per point")
+    v = np.abs(np.concatenate([r.v for r in read_dof_file(last(box, "DOF")).records])).max()
+    ok &= report("at rest", v <= a.vmax, f"largest node speed {v:.3e} m/s (at most {a.vmax:g})")
+    return 0 if ok else 1
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("run")
+    r.add_argument("case"); r.add_argument("out")
+    r.add_argument("--fracas", default="fracas")
+    r.add_argument("--set", action="append")
+    c = sub.add_parser("compare")
+    c.add_argument("out"); c.add_argument("case")
+    c.add_argument("--pairs-differ", type=int, default=0)
+    c.add_argument("--sum-rn", type=float)
+    c.add_argument("--mean-x", type=float)
+    q = sub.add_parser("points")
+    q.add_argument("case"); q.add_argument("out")
+    q.add_argument("--vmax", type=float, default=1e-9)
+    a = p.parse_args(argv)
+    return {"run": cmd_run, "compare": cmd_compare, "points": cmd_points}[a.cmd](a)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
