@@ -3,7 +3,7 @@
 LMGC90's results in lmgc90/) with the settings LMGC90's own script passed (lmgc90/run.json),
 and compare Fracas's last step with LMGC90's DOF.LAST / Vloc_Rloc.LAST.
 
-    lmgc90_example.py run CASE_DIR OUT [--set KEY=VALUE ...]
+    lmgc90_example.py run CASE_DIR OUT [--set KEY=VALUE ...] [--deck DIR]
     lmgc90_example.py compare OUT CASE_DIR [--pairs-differ N] [--count-differ N] [--sum-rn REL]
                                          [--mean-x REL] [--mean-y REL]
     lmgc90_example.py points CASE_DIR OUT [--vmax V]
@@ -47,7 +47,7 @@ def cmd_run(a):
     cmd = [a.fracas, "-q", "--overwrite", "--command", str(out / "run.dat"), "--output", str(out)]
     for s in a.set or []:
         cmd += ["--set", s]
-    return subprocess.run(cmd + [str(case)]).returncode
+    return subprocess.run(cmd + [a.deck or str(case)]).returncode
 
 
 def last(outbox, stem):
@@ -123,6 +123,8 @@ def main(argv=None):
     r.add_argument("case"); r.add_argument("out")
     r.add_argument("--fracas", default="fracas")
     r.add_argument("--set", action="append")
+    r.add_argument("--deck", help="run this case directory (its DATBOX) instead of CASE_DIR's, "
+                   "with CASE_DIR's run.json (e.g. the deck as LMGC90 ships it)")
     c = sub.add_parser("compare")
     c.add_argument("out"); c.add_argument("case")
     c.add_argument("--pairs-differ", type=int, default=0)
