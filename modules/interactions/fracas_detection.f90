@@ -92,11 +92,13 @@ contains
           s%behav//"' that TACT_BEHAV.DAT does not define")
         if (s%alert < 0.0_wp) call input_error(s%src%file, s%src%line, 55, &
           'alert distance must be >= 0')
-        call check_body_model(s, s%cdbdy, s%cdtac, 2)
-        call check_body_model(s, s%anbdy, s%antac, 44)
         icd = find_cls(s%cdtac, s%cdcol)
         ian = find_cls(s%antac, s%ancol)
-        if (icd == 0 .or. ian == 0) cycle   ! no contactor of that class: the rule is unused
+        ! No contactor of that class: the rule is unused (LMGC90's old decks
+        ! carry rules in an older layout, e.g. 'DISKx  BDARY', that match nothing).
+        if (icd == 0 .or. ian == 0) cycle
+        call check_body_model(s, s%cdbdy, s%cdtac, 2)
+        call check_body_model(s, s%anbdy, s%antac, 44)
         det%rule_law(icd, ian) = ilaw
         det%rule_alert(icd, ian) = s%alert
         det%max_alert = max(det%max_alert, s%alert)

@@ -7,13 +7,15 @@ and compare Fracas's last step with LMGC90's DOF.LAST / Vloc_Rloc.LAST.
     lmgc90_example.py compare OUT CASE_DIR [--pairs-differ N] [--count-differ N] [--sum-rn REL]
                                          [--mean-x REL] [--mean-y REL]
     lmgc90_example.py points CASE_DIR OUT [--vmax V]
+    lmgc90_example.py h5 OUT NAME=V1,V2,... [--rtol R]
 
 `compare` checks the contacts (candidate body and contactor, antagonist body and contactor)
 of both codes (their numbers, and at most N pairs in one code only), the summed normal
 reaction over the common contacts and the mean node displacement of meshed bodies (each
 component relative to LMGC90's). `points` checks a mesh
 deck's CLALp contacts: one per candidate point (LMGC90's rule), every point glued, no
-node faster than V (a scene at rest stays at rest).
+node faster than V (a scene at rest stays at rest). `h5` compares the first values
+of datasets of OUT/OUTBOX/fracas.h5 (e.g. bodies/mass) with closed-form values.
 """
 import argparse
 import json
@@ -116,6 +118,19 @@ def cmd_points(a):
     return 0 if ok else 1
 
 
+def cmd_h5(a):
+    import h5py
+    ok = True
+    with h5py.File(Path(a.out) / "OUTBOX" / "fracas.h5", "r") as f:
+        for spec in a.expect:
+            name, values = spec.split("=", 1)
+            want = np.array([float(v) for v in values.split(",")])
+            got = np.asarray(f[name][()], dtype=float).ravel()[:len(want)]   # the first values
+            good = got.shape == want.shape and np.allclose(got, want, rtol=a.rtol, atol=0.0)
+            ok &= report(name, good, f"{got} against {want} (rtol {a.rtol:g})")
+    return 0 if ok else 1
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="cmd", required=True)
@@ -135,8 +150,11 @@ def main(argv=None):
     q = sub.add_parser("points")
     q.add_argument("case"); q.add_argument("out")
     q.add_argument("--vmax", type=float, default=1e-9)
+    h = sub.add_parser("h5")
+    h.add_argument("out"); h.add_argument("expect", nargs="+")
+    h.add_argument("--rtol", type=float, default=1e-12)
     a = p.parse_args(argv)
-    return {"run": cmd_run, "compare": cmd_compare, "points": cmd_points}[a.cmd](a)
+    return {"run": cmd_run, "compare": cmd_compare, "points": cmd_points, "h5": cmd_h5}[a.cmd](a)
 
 
 if __name__ == "__main__":
