@@ -128,7 +128,8 @@ contains
       end associate
     end do
     call rbdy2_init(sc%bodies, number, ref, mass, inertia, avrd, deck%gravity(1:2))
-    sc%bodies%driven_start_imposed = deck%run%driven_start == 'imposed'
+    ! LMGC90 starts a driven dof of a rigid body at its imposed value (lmgc90)
+    sc%bodies%driven_start_imposed = deck%run%driven_start /= 'initial'
     do k = 1, size(deck%driven)
       if (deck%driven(k)%model /= 'MAILx') call rbdy2_add_drive(sc%bodies, deck%driven(k))
     end do

@@ -5,7 +5,7 @@ and compare Fracas's last step with LMGC90's DOF.LAST / Vloc_Rloc.LAST.
 
     lmgc90_example.py run CASE_DIR OUT [--set KEY=VALUE ...] [--deck DIR]
     lmgc90_example.py compare OUT CASE_DIR [--pairs-differ N] [--count-differ N] [--sum-rn REL]
-                                         [--mean-x REL] [--mean-y REL]
+                                         [--mean-x REL] [--mean-y REL] [--node B:N:DOF]
     lmgc90_example.py points CASE_DIR OUT [--vmax V]
     lmgc90_example.py h5 OUT NAME=V1,V2,... [--rtol R]
 
@@ -95,7 +95,20 @@ def cmd_compare(a):
         rel = abs(xo - xr) / max(abs(xr), 1e-300)
         ok &= report(f"mean node displacement X({j + 1})", rel <= tol,
                      f"{xo:.6e} ours, {xr:.6e} LMGC90's: {rel:.2e} apart (tolerance {tol:g})")
+    for spec in a.node or []:
+        body, node, dof = (int(x) for x in spec.split(":"))
+        xo = node_x(last(ours_box, "DOF"), body, node)[dof - 1]
+        xr = node_x(ref / "DOF.LAST", body, node)[dof - 1]
+        unit = 10.0 ** (np.floor(np.log10(abs(xr))) - 6)      # 7th significant digit
+        err = abs(xo - xr)
+        ok &= report(f"X({dof}) of MAILx {body} node {node}", err <= unit,
+                     f"{xo} ours, {xr} LMGC90's: {err:.2e} apart (one printed unit: {unit:.0e})")
     return 0 if ok else 1
+
+
+def node_x(path, body, node):
+    r = next(r for r in read_dof_file(path).records if r.model == "MAILx" and r.number == body)
+    return r.x[list(r.nodes).index(node)]
 
 
 def cl_points(bodies):
@@ -147,6 +160,8 @@ def main(argv=None):
     c.add_argument("--count-differ", type=int, default=0)
     c.add_argument("--mean-x", type=float)
     c.add_argument("--mean-y", type=float)
+    c.add_argument("--node", action="append", metavar="BODY:NODE:DOF",
+                   help="X(DOF) of this MAILx node, to the printed digit")
     q = sub.add_parser("points")
     q.add_argument("case"); q.add_argument("out")
     q.add_argument("--vmax", type=float, default=1e-9)
