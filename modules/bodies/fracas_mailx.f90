@@ -125,6 +125,8 @@ contains
     m%gravity = deck%gravity(1:2)
     m%plane = merge(plane_stress, plane_strain, deck%run%plane == 'stress')
     m%method = trim(deck%run%linear_solver)
+    ! LMGC90 starts a driven node of a mesh from its previous velocity (lmgc90):
+    ! its examples' driven nodes move theta h v in the first step (4T3 exploded).
     m%driven_start_imposed = deck%run%driven_start == 'imposed'
     m%n = count(deck%bodies%model == 'MAILx')
     allocate (m%node_first(m%n + 1), m%elem_first(m%n + 1))

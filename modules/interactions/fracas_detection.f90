@@ -92,11 +92,13 @@ contains
           s%behav//"' that TACT_BEHAV.DAT does not define")
         if (s%alert < 0.0_wp) call input_error(s%src%file, s%src%line, 55, &
           'alert distance must be >= 0')
-        call check_body_model(s, s%cdbdy, s%cdtac, 2)
-        call check_body_model(s, s%anbdy, s%antac, 44)
         icd = find_cls(s%cdtac, s%cdcol)
         ian = find_cls(s%antac, s%ancol)
-        if (icd == 0 .or. ian == 0) cycle   ! no contactor of that class: the rule is unused
+        ! No contactor of that class: the rule is unused (LMGC90's old decks
+        ! carry rules in an older layout, e.g. 'DISKx  BDARY', that match nothing).
+        if (icd == 0 .or. ian == 0) cycle
+        call check_body_model(s, s%cdbdy, s%cdtac, 2)
+        call check_body_model(s, s%anbdy, s%antac, 44)
         det%rule_law(icd, ian) = ilaw
         det%rule_alert(icd, ian) = s%alert
         det%max_alert = max(det%max_alert, s%alert)
@@ -555,6 +557,13 @@ contains
     real(wp) :: mwt(4)
     logical :: found
     type(polygon_contact_t) :: pc
+    ! CLALp: the contact kept so far for each candidate point (0: none). As
+    ! LMGC90, a candidate point makes one contact, against the antagonist
+    ! segment nearest to it over all the antagonists it sees: in an exploded
+    ! mesh a point near a corner lies within the alert distance of the edges
+    ! of several neighbouring elements, and gluing it to all of them binds
+    ! it at their initial gaps.
+    integer, allocatable :: cl_kept(:)
     ! At most two contacts per pair, one per segment (disk) or vertex (polygon) against a polyline.
     nmax = 0
     do p = 1, det%npairs
@@ -569,6 +578,7 @@ contains
     end do
     call contacts_reserve(c, nmax)
     c%n = 0
+    allocate (cl_kept(t%n), source=0)
     do p = 1, det%npairs
       icd = det%pair_cd(p)
       ian = det%pair_an(p)
@@ -632,12 +642,13 @@ contains
         point = cl_point(t, icd, xn)
         call point_polyline(point, xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), reach, alert, &
                             edge_normal(xn(:, na), xn(:, nb)), found, seg, s, gap, normal)
+        if (found .and. cl_kept(icd) > 0) found = abs(gap) < abs(c%gap(cl_kept(icd)))
         if (found) then
           point = point - gap * normal        ! on the antagonist, as LMGC90 reports it
           len = 0.5_wp * norm2(xn(:, nb) - xn(:, na))
           call mesh_side(1, na, nb, t%apab(icd))
           call mesh_side(3, t%nodes(t%nfirst(ian) + seg - 1), t%nodes(t%nfirst(ian) + seg), s)
-          call add(icd, ian, 0, seg)
+          call add(icd, ian, 0, seg, cl_kept(icd))
         end if
       case (i_cljcx)
         na = t%nodes(t%nfirst(icd)); nb = t%nodes(t%nfirst(icd) + 1)
@@ -725,16 +736,27 @@ contains
 
     !> Append a contact; its history key within the pair is the candidate vertex
     !> (polygons) or the antagonist segment (a disk against a polyline).
-    subroutine add(kcd, kan, cdver, anseg)
+    !> With slot: the contact replaces contact slot (0: appended), and slot
+    !> returns where it went.
+    subroutine add(kcd, kan, cdver, anseg, slot)
       integer, intent(in) :: kcd, kan, cdver, anseg
+      integer, intent(inout), optional :: slot
       integer :: k, b1, b2
       real(wp) :: tang(2), rcd(2), ran(2)
       if (gap > alert) then
         if (.not. present(h)) return
         if (gap + h * min(0.0_wp, approach(kcd, kan)) > alert) return
       end if
-      c%n = c%n + 1
-      k = c%n
+      if (present(slot)) then
+        if (slot == 0) then
+          c%n = c%n + 1
+          slot = c%n
+        end if
+        k = slot
+      else
+        c%n = c%n + 1
+        k = c%n
+      end if
       b1 = t%body(kcd); b2 = t%body(kan)
       c%inter(k) = det%pair_inter(p)
       c%cd(k) = kcd

@@ -7,7 +7,9 @@ module fracas_dkdkx
 
 contains
 
-  !> Gap, normal (from antagonist to candidate) and contact point (middle of the gap).
+  !> Gap, normal (from antagonist to candidate) and contact point: on the
+  !> candidate's surface, as LMGC90 places it (its outputs: the point is gap/2
+  !> from mid-gap, on the candidate's side; the lever arms follow).
   pure subroutine dkdkx_geometry(c_cd, r_cd, c_an, r_an, gap, normal, point)
     real(wp), intent(in) :: c_cd(2), r_cd, c_an(2), r_an
     real(wp), intent(out) :: gap, normal(2), point(2)
@@ -20,6 +22,6 @@ contains
       normal = [0.0_wp, 1.0_wp]   ! coincident centres: any direction is as good
     end if
     gap = dist - r_cd - r_an
-    point = c_an + (r_an + 0.5_wp * gap) * normal
+    point = c_cd - r_cd * normal
   end subroutine dkdkx_geometry
 end module fracas_dkdkx

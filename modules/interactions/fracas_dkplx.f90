@@ -9,7 +9,8 @@ contains
 
   !> Gap, normal (from the polygon to the disk), contact point and the polygon
   !> edge involved. Facing an edge, the normal is that edge's normal exactly;
-  !> near a vertex it points from the vertex to the centre.
+  !> near a vertex it points from the vertex to the centre. The contact point
+  !> is on the polygon's boundary, as LMGC90 places it (its outputs).
   pure subroutine dkplx_geometry(c, r, p, gap, normal, point, iedge)
     real(wp), intent(in) :: c(2), r, p(:, :)
     real(wp), intent(out) :: gap, normal(2), point(2)
@@ -38,7 +39,7 @@ contains
       ! Inside, or facing the edge of largest separation.
       normal = [e(2), -e(1)] / len
       gap = smax - r
-      point = c - (r + 0.5_wp * gap) * normal
+      point = c - smax * normal
       return
     end if
     ! Outside beyond an edge end: the nearest point of the boundary.
@@ -58,6 +59,6 @@ contains
     end do
     normal = (c - closest) / best
     gap = best - r
-    point = closest + 0.5_wp * gap * normal
+    point = closest
   end subroutine dkplx_geometry
 end module fracas_dkplx

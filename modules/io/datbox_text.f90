@@ -101,6 +101,9 @@ contains
       end do
       if (len_trim(t) == 0) return
       if (.not. keep .and. (t(1:1) == '!' .or. t(1:1) == '#')) return
+      ! LMGC90's example decks also indent comments ('  ! ...').
+      k = verify(t, ' ')
+      if (.not. keep .and. t(k:k) == '!') return
       tf%n = tf%n + 1
       tf%lines(tf%n)%text = trim(t)
       tf%lines(tf%n)%src%file = path

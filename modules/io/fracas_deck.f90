@@ -192,9 +192,10 @@ module fracas_deck
     integer :: newton_max_iterations = 20
     character(len=7) :: linear_solver = 'auto'  !< 'auto', 'dense', 'cholmod'
     !> Velocity a driven dof has at the start of a step: its imposed value then
-    !> ('imposed', what LMGC90's RBDY2 does, see doc/solver.md), or the previous
-    !> end-of-step velocity, DOF.INI's at the first step ('initial').
-    character(len=7) :: driven_start = 'imposed'
+    !> ('imposed'), or the previous end-of-step velocity, DOF.INI's at the first
+    !> step ('initial'); 'lmgc90': imposed for rigid bodies, initial for mesh
+    !> nodes, as LMGC90 does (doc/solver.md).
+    character(len=7) :: driven_start = 'lmgc90'
     !> Also make contacts of pairs whose predicted gap (gap + h min(0, u_n), free
     !> velocities) is within the alert distance, not only their gap (doc/solver.md).
     logical :: detection_approach = .true.

@@ -168,7 +168,9 @@ contains
     have_bulk = .true.
     b%behav = get_word(ln, 23, 27, 'material nickname')
     b%avrd = get_real(ln, 35, 48, "average radius 'avrd='")
-    b%gyrd = get_real(ln, 56, 69, "gyration radius 'gyrd='")
+    ! LMGC90's example decks may end the line after avrd: gyrd 0 (computed).
+    b%gyrd = 0.0_wp
+    if (len_trim(ln%text) >= 56) b%gyrd = get_real(ln, 56, 69, "gyration radius 'gyrd='")
     if (b%avrd < 0.0_wp) call line_error(ln, 35, 'avrd must be >= 0 (0: computed from the contactors), found '//rtoa(b%avrd))
     if (b%gyrd < 0.0_wp) call line_error(ln, 56, 'gyrd must be >= 0 (0: computed from the contactors), found '//rtoa(b%gyrd))
     call check_line_end(ln, 69, 'the PLAIN line')
@@ -245,7 +247,15 @@ contains
       case ('POLYG')
         nv = get_int(ln, 40, 46, "number of vertices 'nb_vertex='")
         if (nv < 3) call line_error(ln, 40, 'a POLYG needs at least 3 vertices, found nb_vertex = '//itoa(nv))
-        call check_line_end(ln, 46, 'the POLYG line')
+        ! Older decks add 'byrd=' (columns 51-55, value 56-69), the radius of a
+        ! bounding disk that LMGC90 computes anyway: read, not used.
+        if (field(ln, 51, 55) == 'byrd=') then
+          if (get_real(ln, 56, 69, "bounding radius 'byrd='") < 0.0_wp) &
+            call line_error(ln, 56, 'byrd must be >= 0')
+          call check_line_end(ln, 69, 'the POLYG line')
+        else
+          call check_line_end(ln, 46, 'the POLYG line')
+        end if
         allocate (t%vertices(2, nv))
         do k = 1, nv
           if (.not. is_data(tf, i + k)) call line_error(ln, 40, 'POLYG declares '//itoa(nv)// &
@@ -511,7 +521,12 @@ contains
       if (tacs(ntac)%kind /= kind) call line_error(ln, 1, "'+"//kind//"' continues a "//kind//' line, but the ' &
                                                    //'line before it is a '//tacs(ntac)%kind)
     end if
-    color = get_word(ln, 23, 27, 'colour')
+    ! A '+ALpxx' line may leave the colour blank (LMGC90 does not read it there).
+    if (plus .and. kind == 'ALpxx' .and. is_blank(ln, 16, 27)) then
+      color = tacs(ntac)%color
+    else
+      color = get_word(ln, 23, 27, 'colour')
+    end if
     noda = get_int(ln, 35, 39, "first node 'noda='")
     nodb = get_int(ln, 47, 51, "second node 'nodb='")
     if (noda < 1 .or. noda > nnod) call line_error(ln, 35, 'node '//itoa(noda)//' does not exist ('//name// &

@@ -202,7 +202,7 @@ contains
     case ('linear_solver')
       s = 'one of auto, dense, cholmod'
     case ('driven_start')
-      s = 'one of imposed, initial'
+      s = 'one of lmgc90, imposed, initial'
     case ('cohesive_damage')
       s = 'one of implicit, explicit'
     case ('detection_approach', 'nlgs_check_pass')
@@ -296,7 +296,7 @@ contains
       end select
     case ('driven_start')
       select case (lv)
-      case ('imposed', 'initial')
+      case ('lmgc90', 'imposed', 'initial')
         run%driven_start = lv
       case default
         call bad()

@@ -108,6 +108,7 @@ contains
                 'cohesive interfaces present at step 0 start glued)')
     end if
     call check_see_rules(deck)
+    call warn_unread_files(dat)
 
     path = dat//'/POSTPRO.DAT'
     if (file_exists(path)) then
@@ -122,6 +123,13 @@ contains
       cmd = command_file
     else
       cmd = dat//'/COMMAND.DAT'
+      ! LMGC90's old decks have a COMMAND.DAT in LMGC90's own command language:
+      ! then ours is FRACAS.DAT (fracas-tools command writes it there).
+      if (lmgc90_command_file(cmd)) then
+        call warn(cmd//' is LMGC90''s command language, not Fracas''s run control: not read; '// &
+                  'the run control comes from '//dat//'/FRACAS.DAT if present, --set or --command')
+        cmd = dat//'/FRACAS.DAT'
+      end if
     end if
     if (file_exists(cmd)) then
       deck%command_file = cmd
@@ -142,7 +150,7 @@ contains
         'not found, and no run control given: this deck (an LMGC90 deck?) needs a time step and a number '// &
         'of steps. Give them with --set time_step=H --set number_of_steps=N (or final_time=T; every '// &
         'other setting has a default, see doc/input_reference.md), or a run-control file with '// &
-        '--command FILE, or write DATBOX/COMMAND.DAT with: fracas-tools command CASE_DIR --dt H --steps N')
+        '--command FILE, or write '//cmd//' with: fracas-tools command CASE_DIR --dt H --steps N')
       call check_run_control(deck%run, '--set')
       call warn('no '//cmd//': run control from --set and the defaults (fracas-tools command writes a COMMAND.DAT)')
     end if
@@ -163,6 +171,47 @@ contains
     end if
     call check_plastic_restart(deck)
   end subroutine read_deck
+
+  !> LMGC90 files of physics Fracas does not have: present in DATBOX, they mean
+  !> the example's script sets that physics up; Fracas runs the mechanics alone.
+  subroutine warn_unread_files(dat)
+    character(len=*), intent(in) :: dat
+    character(len=*), parameter :: names(3) = [character(len=17) :: 'MP_DEM.DAT', 'PTPT2_NETWORK.DAT', 'RUPTURE.DAT']
+    character(len=*), parameter :: what(3) = [character(len=80) :: &
+      'LMGC90''s multiphysics parameters (thermal, electrical conduction)', &
+      'a network of PTPT2 point-to-point links', 'rupture parameters read by the example''s script']
+    integer :: k
+    do k = 1, size(names)
+      if (file_exists(dat//'/'//trim(names(k)))) call warn(dat//'/'//trim(names(k))//': '//trim(what(k))// &
+        ', which Fracas does not have: not read (the mechanics alone is run)')
+    end do
+  end subroutine warn_unread_files
+
+  !> PATH exists and is written in LMGC90's old command language (upper-case
+  !> commands such as 'READ BODIES', 'COMPUTE FREE VELOCITY'), which no Fracas
+  !> run-control keyword (one word with '_') looks like.
+  logical function lmgc90_command_file(path)
+    character(len=*), intent(in) :: path
+    character(len=512) :: line
+    integer :: unit, ios, n
+    lmgc90_command_file = .false.
+    if (.not. file_exists(path)) return
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios)
+    if (ios /= 0) return
+    n = 0
+    do while (n < 200)
+      read (unit, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      n = n + 1
+      line = adjustl(line)
+      if (line(1:11) == 'READ BODIES' .or. line(1:16) == 'READ BEHAVIOURS' .or. line(1:12) == 'COMPUTE MASS' .or. &
+          line(1:21) == 'COMPUTE FREE VELOCITY' .or. line(1:12) == 'UPDATE DOF' .or. line(1:10) == 'WRITE LAST') then
+        lmgc90_command_file = .true.
+        exit
+      end if
+    end do
+    close (unit)
+  end function lmgc90_command_file
 
   !> Warn when DOF.INI displaces an elastoplastic meshed body that GPV.INI gives
   !> no Gauss-point values for: its plastic strain would restart at zero, with

@@ -8,7 +8,7 @@ module fracas_read_drv_dof
   use fracas_kinds, only: wp
   use fracas_deck, only: driven_dof_input_t, body_input_t
   use fracas_read_bodies, only: body_lookup_t, body_lookup, find_body, no_such_body
-  use fracas_errors, only: input_error
+  use fracas_errors, only: input_error, warn
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, check_line_end, &
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, rtoa, &
                                 parse_real
@@ -162,7 +162,7 @@ contains
     character(len=*), intent(in) :: datbox_dir
     type(driven_dof_input_t), intent(out) :: d
     real(wp) :: v(6)
-    integer :: k
+    integer :: k, shift
     character(len=:), allocatable :: fname
 
     d%src = ln%src
@@ -190,8 +190,17 @@ contains
         call line_error(ln, 25, "evolution file '"//datbox_dir//'/'//fname//"' is a directory, not a file")
       call read_evolution_file(datbox_dir//'/'//fname, d%evo_t, d%evo_v)
     else
+      ! Old LMGC90 example decks write every value one column to the right
+      ! (columns 16-29, 31-44, ...): read them there, and say so.
+      shift = 0
+      if (len_trim(ln%text) == value_col(6) + 14) then
+        if (all([(field(ln, value_col(k), value_col(k)) == ' ' .and. field(ln, value_col(k) + 14, value_col(k) + 14) &
+                  /= ' ', k=1, 6)])) shift = 1
+      end if
+      if (shift == 1) call warn(ln%src%file//':'//itoa(ln%src%line)//': the six values stand one column right '// &
+                                'of their fields (columns 16-29, 31-44, ..., 91-104): read there')
       do k = 1, 6
-        v(k) = get_real(ln, value_col(k), value_col(k) + 13, trim(value_name(k)))
+        v(k) = get_real(ln, value_col(k) + shift, value_col(k) + 13 + shift, trim(value_name(k)))
       end do
       d%ct = v(1)
       d%amp = v(2)
@@ -199,7 +208,7 @@ contains
       d%phi = v(4)
       d%rampi = v(5)
       d%ramp = v(6)
-      call check_line_end(ln, value_col(6) + 13, 'the driven dof line')
+      call check_line_end(ln, value_col(6) + 13 + shift, 'the driven dof line')
     end if
   end subroutine read_dof_line
 

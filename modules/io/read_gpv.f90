@@ -154,7 +154,9 @@ contains
         if (models(k)%nickname == b%elements(r%element)%model) m = k
       end do
       if (m > 0) then
-        if (models(m)%material == 'J2iso') per_gp = 3
+        ! J2 writes a line of internals; so does MatLib (isext MatL_), whose
+        ! elastic law keeps one internal value (read, not used by elas_).
+        if (models(m)%material == 'J2iso' .or. models(m)%external == 'MatL_') per_gp = 3
       end if
     else
       do k = 2, nlines

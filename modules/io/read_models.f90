@@ -24,15 +24,22 @@ module fracas_read_models
   character(len=5), parameter :: element_geometry(5) = ['T3xxx', 'Q4xxx', 'T6xxx', 'Q8xxx', 'Q4xxx']
   character(len=5), parameter :: rigid_element = 'Rxx2D'
 
-  integer, parameter :: n_options = 6
-  character(len=5), parameter :: option_names(n_options) = ['kine_', 'form_', 'mater', 'mstrg', 'aniso', 'isext']
-  !> Accepted values per option (blank-padded lists).
-  character(len=5), parameter :: option_values(2, n_options) = reshape([character(len=5) :: &
-    'small', 'large', 'UpdtL', 'TotaL', 'elas_', 'J2iso', 'lump_', 'coher', 'iso__', '     ', 'no___', '     '], &
-    [2, n_options])
+  integer, parameter :: n_options = 7
+  character(len=5), parameter :: option_names(n_options) = ['kine_', 'form_', 'mater', 'mstrg', 'aniso', 'isext', &
+                                                            'cplth']
+  !> Accepted values per option (blank-padded lists). 'form_ xxxxx' is what
+  !> pylmgc90 writes for "no formulation" (small strain). isext MatL_: LMGC90's
+  !> MatLib computes the same laws as its internal models for the 'mater' values
+  !> Fracas runs (elas_: linear isotropic elasticity, J2iso: J2 plasticity with
+  !> isotropic hardening, from the same BULK_BEHAV.DAT constants), so a MatLib
+  !> model runs as the internal one; other 'mater' values are refused by name.
+  !> cplth: coupling with a thermal model, only 'no___' (none).
+  character(len=5), parameter :: option_values(3, n_options) = reshape([character(len=5) :: &
+    'small', 'large', '     ', 'UpdtL', 'TotaL', 'xxxxx', 'elas_', 'J2iso', '     ', 'lump_', 'coher', '     ', &
+    'iso__', '     ', '     ', 'no___', 'MatL_', '     ', 'no___', '     ', '     '], [3, n_options])
   character(len=*), parameter :: option_meaning(n_options) = [character(len=40) :: &
     'kinematics', 'large-strain formulation', 'material model', 'mass matrix storage', 'anisotropy', &
-    'external material library']
+    'external material library', 'thermal coupling']
 
 contains
 
@@ -136,7 +143,12 @@ contains
     integer, intent(inout) :: seen(:)
     character(len=:), allocatable :: name, value
     integer :: k
-    name = get_word(ln, 23, 27, 'model option name')
+    ! pylmgc90 writes 'cplth_' (6 characters); LMGC90 reads columns 23-27.
+    if (field(ln, 23, 29) == 'cplth_') then
+      name = 'cplth'
+    else
+      name = get_word(ln, 23, 27, 'model option name')
+    end if
     k = findloc(option_names, name, dim=1)
     if (k == 0) call line_error(ln, 23, "unknown model option '"//name//"' (supported: "//word_list(option_names)//')')
     if (seen(k) > 0) call line_error(ln, 23, "option '"//name//"' is given twice (first at line "//itoa(seen(k))//')')
@@ -159,6 +171,7 @@ contains
     case ('isext')
       m%external = value
     end select
+    if (name == 'form_' .and. value == 'xxxxx') m%formulation = ''
   end subroutine read_option
 
   !> Every element of the meshed bodies names a model of MODELS that suits its

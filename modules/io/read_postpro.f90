@@ -11,6 +11,8 @@
 !>         5
 !>   END
 !>
+!> LMGC90 reads 30 columns of each line: a ':' beyond column 30 (its example
+!> decks end every line so) and what follows it are dropped.
 !> A line followed by a 'STEP' line is a command: a name that is not one of
 !> LMGC90's 2D commands is an error (with the closest name). Which commands
 !> Fracas carries out is decided by fracas_postpro; here every command is
@@ -59,7 +61,7 @@ contains
     i = 0
     do while (i < tf%n)
       i = i + 1
-      text = trim(adjustl(tf%lines(i)%text))
+      text = trim(adjustl(content(tf%lines(i)%text)))
       line = tf%lines(i)%src%line
       col = verify(tf%lines(i)%text, ' ')
       if (text(1:1) == '#' .or. text(1:1) == '!') cycle
@@ -68,7 +70,7 @@ contains
         exit
       end if
       next = ''
-      if (i < tf%n) next = upper(trim(adjustl(tf%lines(i + 1)%text)))
+      if (i < tf%n) next = upper(trim(adjustl(content(tf%lines(i + 1)%text))))
       if (starts_with_step(next)) then
         ! A command line: a known name, then STEP n.
         k = name_index(text)
@@ -129,6 +131,20 @@ contains
       end do
     end subroutine read_body_list
   end subroutine read_postpro
+
+  !> A line as LMGC90 reads it (30 columns): its example decks pad every line
+  !> with blanks to column 30 and end it with ':' (a ruler), which is dropped.
+  pure function content(s) result(c)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: c
+    integer :: k
+    k = index(s, ':')
+    if (k > 30) then
+      c = s(1:k - 1)
+    else
+      c = s
+    end if
+  end function content
 
   logical function starts_with_step(s)
     character(len=*), intent(in) :: s

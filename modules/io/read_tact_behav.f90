@@ -9,9 +9,9 @@
 module fracas_read_tact_behav
   use fracas_kinds, only: wp
   use fracas_deck, only: law_input_t, see_rule_input_t
-  use fracas_errors, only: input_error
+  use fracas_errors, only: input_error, warn
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, check_line_end, &
-                                is_blank, keyword_of, is_data, get_real, get_word, itoa, rtoa
+                                is_blank, keyword_of, is_data, get_real, get_word, itoa, rtoa, parse_real
   implicit none
   private
   public :: read_tact_behav, law_param_count, law_param_names, known_laws
@@ -183,8 +183,19 @@ contains
       case ('behav')
         if (.not. is_data(tf, i + 1)) &
           call line_error(tf%lines(i), 1, "'$behav' must be followed by a law line (nickname, law name, parameters)")
-        nl = nl + 1
         i = i + 1
+        ! LMGC90 reads a law no see rule uses without complaint (its example decks
+        ! carry such laws unknown here or in an older layout): skip it, say so.
+        if (.not. used(field(tf%lines(i), 2, 6)) .and. .not. readable(tf, i)) then
+          call warn(tf%lines(i)%src%file//':'//itoa(tf%lines(i)%src%line)//": contact law '"// &
+                    trim(field(tf%lines(i), 2, 6))//"' ("//trim(field(tf%lines(i), 9, 38))// &
+                    ") is used by no see rule and not in a layout Fracas reads: skipped")
+          do while (is_data(tf, i))
+            i = i + 1
+          end do
+          cycle
+        end if
+        nl = nl + 1
         j = i
         call read_law(tf, i, laws(nl))
         do k = 1, nl - 1
@@ -220,6 +231,7 @@ contains
         end if
       end select
     end do
+    laws = laws(1:nl)
 
     ! Every rule names a law of this file; no rule given twice.
     do j = 1, ns
@@ -237,7 +249,52 @@ contains
                               ' (same candidate and antagonist)')
       end do
     end do
+  contains
+
+    !> Some $seety rule of the file names the law nickname nick.
+    logical function used(nick)
+      character(len=*), intent(in) :: nick
+      integer :: l
+      used = .false.
+      do l = 1, tf%n
+        if (keyword_of(tf%lines(l)) /= 'seety') cycle
+        do m = l + 1, tf%n
+          if (.not. is_data(tf, m)) exit
+          if (field(tf%lines(m), 23, 27) == nick .and. field(tf%lines(m), 2, 6) /= 'cdbdy') used = .true.
+        end do
+      end do
+    end function used
   end subroutine read_tact_behav
+
+  !> The law at line i is one read_law reads without error: a known law, its
+  !> parameter lines (as many as it takes) with a number in each value field
+  !> and nothing past the last one.
+  logical function readable(tf, i)
+    type(text_file_t), intent(in) :: tf
+    integer, intent(in) :: i
+    integer :: k, nlines, per(max_lines), l
+    real(wp) :: x
+    character(len=:), allocatable :: msg
+    readable = .false.
+    k = spec_index(field(tf%lines(i), 9, 38))
+    if (k == 0) return
+    call split_layout(specs(k)%layout, nlines, per)
+    do l = 1, max(nlines, 1)
+      if (.not. is_data(tf, i + l - 1)) return
+    end do
+    if (is_data(tf, i + max(nlines, 1))) return
+    do l = 1, nlines
+      associate (pl => tf%lines(i + l - 1))
+        if (l > 1 .and. .not. is_blank(pl, 1, 38)) return
+        if (.not. parse_real(field(pl, 46, 59), x, msg)) return
+        if (per(l) == 2) then
+          if (.not. parse_real(field(pl, 67, 80), x, msg)) return
+        end if
+        if (len_trim(pl%text) > merge(80, 59, per(l) == 2)) return
+      end associate
+    end do
+    readable = .true.
+  end function readable
 
   logical function same_pair(a, b)
     type(see_rule_input_t), intent(in) :: a, b

@@ -113,8 +113,11 @@ contains
           "' is not defined in BULK_BEHAV.DAT")
         call body_area_inertia(bd, area, polar)
         avrd(ib) = bd%avrd
-        if (avrd(ib) <= 0.0_wp) avrd(ib) = sqrt(area / pi)
         gyrd = bd%gyrd
+        ! As LMGC90: without gyrd, both radii come from the contactors (a
+        ! given avrd alone is not kept).
+        if (gyrd <= 0.0_wp) avrd(ib) = 0.0_wp
+        if (avrd(ib) <= 0.0_wp) avrd(ib) = sqrt(area / pi)
         if (gyrd <= 0.0_wp .and. area > 0.0_wp) gyrd = sqrt(polar / area)
         if (avrd(ib) <= 0.0_wp .or. gyrd <= 0.0_wp) call input_error(bd%src%file, bd%src%line, 0, &
           'body has no size: give avrd and gyrd or at least one contactor')
@@ -125,7 +128,8 @@ contains
       end associate
     end do
     call rbdy2_init(sc%bodies, number, ref, mass, inertia, avrd, deck%gravity(1:2))
-    sc%bodies%driven_start_imposed = deck%run%driven_start == 'imposed'
+    ! LMGC90 starts a driven dof of a rigid body at its imposed value (lmgc90)
+    sc%bodies%driven_start_imposed = deck%run%driven_start /= 'initial'
     do k = 1, size(deck%driven)
       if (deck%driven(k)%model /= 'MAILx') call rbdy2_add_drive(sc%bodies, deck%driven(k))
     end do
@@ -151,7 +155,9 @@ contains
 
     allocate (sc%laws(size(deck%laws)), nick(size(deck%laws)))
     do k = 1, size(deck%laws)
-      sc%laws(k) = law_from_input(deck%laws(k))
+      ! A law no see rule uses acts nowhere (LMGC90's decks carry laws its
+      ! solver has and ours lacks): only the used ones must be runnable.
+      if (any(deck%see_rules%behav == deck%laws(k)%nickname)) sc%laws(k) = law_from_input(deck%laws(k))
       nick(k) = deck%laws(k)%nickname
     end do
     call tactors_build(bodies, sc%tactors)

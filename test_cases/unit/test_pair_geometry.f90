@@ -14,7 +14,8 @@ program test_pair_geometry
   call dkdkx_geometry([3.0_wp * 0.7_wp, 4.0_wp * 0.7_wp], 1.0_wp, [0.0_wp, 0.0_wp], 2.0_wp, gap, n, p)
   call check_close('DKDKx gap', gap, 0.5_wp, 1e-14_wp)
   call check_close('DKDKx normal x', n(1), 0.6_wp, 1e-14_wp)
-  call check_close('DKDKx point y (middle of the gap)', p(2), 2.25_wp * 0.8_wp, 1e-14_wp)
+  ! The point is on the candidate's surface, as LMGC90 puts it: 3.5 - 1 along n.
+  call check_close('DKDKx point y (on the candidate)', p(2), 2.5_wp * 0.8_wp, 1e-14_wp)
 
   ! Disk r = 0.1 at (0.3, 0.12) above a horizontal wall of half length 1,
   ! half thickness 0.01 centred at 0: gap = 0.12 - 0.1 - 0.01 = 0.01, n = (0,1).

@@ -59,12 +59,15 @@ def read_vloc(path):
             vals = [float(x.replace("D", "E").replace("d", "e")) for x in NUM.findall(lines[i + 3])]
             key = (inter, cdbdy, cdtac, cdver, anbdy, antac)
             internals = []
+            coo = None
             j = i + 4
             while j < len(lines) and not lines[j].startswith("$icdan"):
                 if lines[j].startswith("#taille_ele") and j + 1 < len(lines):
                     internals = [float(x.replace("D", "E")) for x in NUM.findall(lines[j + 1])]
+                if lines[j][29:34] == "coo1=":
+                    coo = [float(x.replace("D", "E")) for x in NUM.findall(lines[j])][:2]
                 j += 1
-            out[key] = dict(status=status, rlt=vals[0], rln=vals[1], internals=internals)
+            out[key] = dict(status=status, rlt=vals[0], rln=vals[1], internals=internals, coo=coo)
             i += 3
         i += 1
     return out
@@ -131,6 +134,16 @@ def exact(a):
         er = max([max(abs(vo[k]["rlt"] - vr[k]["rlt"]), abs(vo[k]["rln"] - vr[k]["rln"])) for k in common] + [0.0])
         report("max |R - Rref| / max|Rref|", "", "", er / rmax, a.rtol, er / rmax <= a.rtol)
         rel = a.rtol
+    # Contact points of a disk (where both files give them): LMGC90 puts them on
+    # the candidate disk's surface (DKDKx) or on the polygon's boundary (DKPLx).
+    # (Polygon pairs' points are not compared.)
+    with_coo = [k for k in common if vo[k]["coo"] and vr[k]["coo"] and k[0].startswith("DK")]
+    if with_coo:
+        cmax = max(abs(c) for k in with_coo for c in vr[k]["coo"])
+        pairs = [((k, d), vo[k]["coo"][d], vr[k]["coo"][d]) for k in with_coo for d in (0, 1)]
+        e, where = worst_units(pairs, 1e-12 * cmax)
+        report("contact points: worst |coo - cooref| in printed units (7 digits)", where[1] if where else "",
+               where[2] if where else "", e, a.units, e <= a.units)
     # Statuses only mean something where the reaction is not negligible.
     bad = [k for k in common if abs(vr[k]["rln"]) > max(rel * rmax, a.rfloor) and vo[k]["status"] != vr[k]["status"]]
     report("statuses of loaded contacts", len(common) - len(bad), len(common), float(len(bad)), 0.0, not bad)

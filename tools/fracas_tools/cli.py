@@ -90,7 +90,8 @@ def _cmd_render_vtk(a):
 
 def _cmd_command(a):
     from .lmgc90 import read_run_script, run_control, write_command
-    settings = read_run_script(a.from_script) if a.from_script else {}
+    settings_notes = read_run_script(a.from_script) if a.from_script else None
+    settings = dict(settings_notes or {})
     given = {"dt": a.dt, "theta": a.theta, "nb_steps": a.steps, "freq_detect": a.freq_detect,
              "norm": a.norm, "tol": a.tol, "relax": a.relax, "gs_it1": a.it1, "gs_it2": a.it2,
              "freq_write": a.freq_write, "freq_display": a.freq_display}
@@ -100,10 +101,21 @@ def _cmd_command(a):
         raise ValueError("the time step and the number of steps are needed: give "
                          + " and ".join({"dt": "--dt", "nb_steps": "--steps"}[k] for k in missing)
                          + (f" (not found in {a.from_script})" if a.from_script else ""))
+    scramble = settings.pop("quickscramble", False)
     rc = run_control(**settings)
     extra = {"output_hdf5_every": a.freq_hdf5, "nlgs_unconverged": a.unconverged}
+    if scramble:
+        extra["nlgs_order"] = "shuffled"       # LMGC90's nlgs_SetWithQuickScramble
     rc.set(**{k: v for k, v in extra.items() if v is not None})
-    out = write_command(a.case_dir, rc, overwrite=a.overwrite, path=a.output)
+    # Never guess silently: say what the script does that was not read, and the
+    # physics it sets up that Fracas does not have (written in the file too).
+    notes = []
+    if a.from_script:
+        notes = [f"not understood: {n}" for n in settings_notes.not_understood] + \
+                [f"not in Fracas (the mechanics alone is run): {n}" for n in settings_notes.physics]
+    out = write_command(a.case_dir, rc, overwrite=a.overwrite, path=a.output, notes=notes)
+    for n in notes:
+        print(f"fracas-tools command: {n}", file=sys.stderr)
     print(out)
     for line in rc.lines()[1:]:
         print("  " + line)

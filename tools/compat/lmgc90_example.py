@@ -1,0 +1,176 @@
+#!/usr/bin/env python3
+"""Run one of LMGC90's example decks (shared/lmgc90_examples/runs/<case>: DATBOX/ and
+LMGC90's results in lmgc90/) with the settings LMGC90's own script passed (lmgc90/run.json),
+and compare Fracas's last step with LMGC90's DOF.LAST / Vloc_Rloc.LAST.
+
+    lmgc90_example.py run CASE_DIR OUT [--set KEY=VALUE ...] [--deck DIR]
+    lmgc90_example.py compare OUT CASE_DIR [--pairs-differ N] [--count-differ N] [--sum-rn REL]
+                                         [--mean-x REL] [--mean-y REL] [--node B:N:DOF]
+    lmgc90_example.py points CASE_DIR OUT [--vmax V]
+    lmgc90_example.py h5 OUT NAME=V1,V2,... [--rtol R]
+
+`compare` checks the contacts (candidate body and contactor, antagonist body and contactor)
+of both codes (their numbers, and at most N pairs in one code only), the summed normal
+reaction over the common contacts and the mean node displacement of meshed bodies (each
+component relative to LMGC90's). `points` checks a mesh
+deck's CLALp contacts: one per candidate point (LMGC90's rule), every point glued, no
+node faster than V (a scene at rest stays at rest). `h5` compares the first values
+of datasets of OUT/OUTBOX/fracas.h5 (e.g. bodies/mass) with closed-form values.
+"""
+import argparse
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from fracas_tools.outbox import read_dof_file, read_vloc_rloc  # noqa: E402
+
+
+def run_control(run_json):
+    """Fracas's run control (COMMAND.DAT lines) from LMGC90's run.json."""
+    r = json.loads(Path(run_json).read_text())
+    solver, norm, tol, relax, it1, it2 = (str(x).strip() for x in r["exsolver"])
+    lines = [f"time_step {r['dt']}", f"number_of_steps {r['steps']}", f"theta {r['theta']}",
+             f"nlgs_check {norm}", f"nlgs_tolerance {tol}", f"nlgs_relaxation {relax}",
+             f"nlgs_sweeps_per_check {it1}", f"nlgs_max_checks {it2}",
+             "detection_approach no"]          # LMGC90 detects from the gap alone
+    if r.get("quickscramble"):
+        lines.append("nlgs_order shuffled")
+    return "\n".join(lines) + "\n"
+
+
+def cmd_run(a):
+    case, out = Path(a.case), Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "run.dat").write_text(run_control(case / "lmgc90" / "run.json"))
+    cmd = [a.fracas, "-q", "--overwrite", "--command", str(out / "run.dat"), "--output", str(out)]
+    for s in a.set or []:
+        cmd += ["--set", s]
+    return subprocess.run(cmd + [a.deck or str(case)]).returncode
+
+
+def last(outbox, stem):
+    files = sorted(Path(outbox).glob(stem + ".OUT.*"), key=lambda p: int(p.suffix[1:]))
+    return files[-1]
+
+
+def contacts(path):
+    out = {}
+    for r in read_vloc_rloc(path).records:
+        out.setdefault((r.icdbdy, r.icdtac, r.ianbdy, r.iantac), []).append(r)
+    return out
+
+
+def mesh_x(path):
+    return np.concatenate([r.x for r in read_dof_file(path).records if r.model == "MAILx"] or [np.zeros((0, 2))])
+
+
+def report(name, ok, detail):
+    print(f"{'ok  ' if ok else 'FAIL'} {name}: {detail}")
+    return ok
+
+
+def cmd_compare(a):
+    ours_box, ref = Path(a.out) / "OUTBOX", Path(a.case) / "lmgc90"
+    co, cr = contacts(last(ours_box, "Vloc_Rloc")), contacts(ref / "Vloc_Rloc.LAST")
+    no, nr = sum(map(len, co.values())), sum(map(len, cr.values()))
+    only = len(set(co) ^ set(cr))
+    ok = report("contacts", only <= a.pairs_differ and abs(no - nr) <= a.count_differ,
+                f"{no} ours, {nr} LMGC90's (at most {a.count_differ} apart), {only} pairs in one code only "
+                f"(at most {a.pairs_differ})")
+    common = sorted(set(co) & set(cr))
+    if a.sum_rn is not None and common:
+        so = sum(r.rloc[1] for k in common for r in co[k])
+        sr = sum(r.rloc[1] for k in common for r in cr[k])
+        rel = abs(so - sr) / max(abs(sr), 1e-300)
+        ok &= report("summed rln/H", rel <= a.sum_rn, f"{so:.6e} ours, {sr:.6e} LMGC90's: {rel:.2e} apart "
+                     f"(tolerance {a.sum_rn:g})")
+    for j, tol in enumerate((a.mean_x, a.mean_y)):
+        if tol is None:
+            continue
+        xo, xr = mesh_x(last(ours_box, "DOF"))[:, j].mean(), mesh_x(ref / "DOF.LAST")[:, j].mean()
+        rel = abs(xo - xr) / max(abs(xr), 1e-300)
+        ok &= report(f"mean node displacement X({j + 1})", rel <= tol,
+                     f"{xo:.6e} ours, {xr:.6e} LMGC90's: {rel:.2e} apart (tolerance {tol:g})")
+    for spec in a.node or []:
+        body, node, dof = (int(x) for x in spec.split(":"))
+        xo = node_x(last(ours_box, "DOF"), body, node)[dof - 1]
+        xr = node_x(ref / "DOF.LAST", body, node)[dof - 1]
+        unit = 10.0 ** (np.floor(np.log10(abs(xr))) - 6)      # 7th significant digit
+        err = abs(xo - xr)
+        ok &= report(f"X({dof}) of MAILx {body} node {node}", err <= unit,
+                     f"{xo} ours, {xr} LMGC90's: {err:.2e} apart (one printed unit: {unit:.0e})")
+    return 0 if ok else 1
+
+
+def node_x(path, body, node):
+    r = next(r for r in read_dof_file(path).records if r.model == "MAILx" and r.number == body)
+    return r.x[list(r.nodes).index(node)]
+
+
+def cl_points(bodies):
+    """Number of CLxxx candidate points of BODIES.DAT (each line, continuation lines too)."""
+    return sum(1 for ln in Path(bodies).read_text().splitlines() if ln[1:6] == "CLxxx")
+
+
+def cmd_points(a):
+    box = Path(a.out) / "OUTBOX"
+    recs = [r for rs in contacts(last(box, "Vloc_Rloc")).values() for r in rs if r.inter == "CLALp"]
+    per_point = {}
+    for r in recs:
+        per_point[(r.icdbdy, r.icdtac)] = per_point.get((r.icdbdy, r.icdtac), 0) + 1
+    npts = cl_points(Path(a.case) / "DATBOX" / "BODIES.DAT")
+    ok = report("one contact per candidate point", max(per_point.values(), default=0) == 1 and len(recs) == npts,
+                f"{len(recs)} CLALp contacts for {npts} candidate points, at most "
+                f"{max(per_point.values(), default=0)} per point")
+    v = np.abs(np.concatenate([r.v for r in read_dof_file(last(box, "DOF")).records])).max()
+    ok &= report("at rest", v <= a.vmax, f"largest node speed {v:.3e} m/s (at most {a.vmax:g})")
+    return 0 if ok else 1
+
+
+def cmd_h5(a):
+    import h5py
+    ok = True
+    with h5py.File(Path(a.out) / "OUTBOX" / "fracas.h5", "r") as f:
+        for spec in a.expect:
+            name, values = spec.split("=", 1)
+            want = np.array([float(v) for v in values.split(",")])
+            got = np.asarray(f[name][()], dtype=float).ravel()[:len(want)]   # the first values
+            good = got.shape == want.shape and np.allclose(got, want, rtol=a.rtol, atol=0.0)
+            ok &= report(name, good, f"{got} against {want} (rtol {a.rtol:g})")
+    return 0 if ok else 1
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("run")
+    r.add_argument("case"); r.add_argument("out")
+    r.add_argument("--fracas", default="fracas")
+    r.add_argument("--set", action="append")
+    r.add_argument("--deck", help="run this case directory (its DATBOX) instead of CASE_DIR's, "
+                   "with CASE_DIR's run.json (e.g. the deck as LMGC90 ships it)")
+    c = sub.add_parser("compare")
+    c.add_argument("out"); c.add_argument("case")
+    c.add_argument("--pairs-differ", type=int, default=0)
+    c.add_argument("--sum-rn", type=float)
+    c.add_argument("--count-differ", type=int, default=0)
+    c.add_argument("--mean-x", type=float)
+    c.add_argument("--mean-y", type=float)
+    c.add_argument("--node", action="append", metavar="BODY:NODE:DOF",
+                   help="X(DOF) of this MAILx node, to the printed digit")
+    q = sub.add_parser("points")
+    q.add_argument("case"); q.add_argument("out")
+    q.add_argument("--vmax", type=float, default=1e-9)
+    h = sub.add_parser("h5")
+    h.add_argument("out"); h.add_argument("expect", nargs="+")
+    h.add_argument("--rtol", type=float, default=1e-12)
+    a = p.parse_args(argv)
+    return {"run": cmd_run, "compare": cmd_compare, "points": cmd_points, "h5": cmd_h5}[a.cmd](a)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
