@@ -5,7 +5,8 @@ and with LMGC90's explicit update, and the peak stress, the macro-crack's shares
 damage energy of each run (tools/hydride/hydride_post.py). Issue 17's target: the peak
 stress moves by less than 1 % from dt to dt/2 with the default.
 
-usage: dt_study.py FRACAS OUT_DIR [--schemes implicit,explicit] [--halvings 1] [--check TOL]
+usage: dt_study.py FRACAS OUT_DIR [--schemes implicit,explicit] [--halvings 1] [--bondings weak,strong]
+                   [--check TOL]
 --check TOL: exit 1 if a default-scheme peak moves by more than TOL (relative) per halving.
 """
 import argparse
@@ -29,11 +30,12 @@ def main():
     ap.add_argument("--schemes", default="implicit,explicit")
     ap.add_argument("--halvings", type=int, default=1)
     ap.add_argument("--check", type=float, default=None)
+    ap.add_argument("--bondings", default="weak,strong")
     a = ap.parse_args()
     bad = 0
     print(f"{'bonding':8s} {'scheme':9s} {'dt (s)':>9s} {'peak (MPa)':>11s} {'change':>8s} "
           f"{'HY_HY':>6s} {'HY_MA':>6s} {'damage (J/m)':>13s} {'CPU (s)':>8s}")
-    for bonding in ("weak", "strong"):
+    for bonding in a.bondings.split(","):
         for scheme in a.schemes.split(","):
             prev = None
             for level in range(a.halvings + 1):
