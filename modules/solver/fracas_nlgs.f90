@@ -52,7 +52,6 @@ module fracas_nlgs
     real(wp) :: residual_onepq = 0.0_wp  !< ||F|| / (1 + ||q||)
     integer :: nactive = 0               !< contacts with a non-zero reaction
     integer(i8) :: updates = 0           !< local solves done: swept contacts of every sweep and check pass
-    integer :: damage_passes = 1         !< NLGS solves of the step (damage within the step: more than 1 while it settles)
     real(wp) :: velocity_seconds = 0.0_wp !< meshes: wall time of the final solve of their velocities
   end type nlgs_report_t
 
@@ -439,7 +438,7 @@ contains
   !> (warm start), up to max_passes times. Solving the nonmonotone softening law inside
   !> each local update instead made Gauss–Seidel cycle; a factor frozen over a block of
   !> sweeps keeps each block a linear problem. The report adds up the sweeps of all
-  !> passes; damage_passes: their number.
+  !> passes.
   subroutine nlgs_solve(solver, c, b, m, report)
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
@@ -451,7 +450,6 @@ contains
     integer :: pass
     logical :: changed
     call nlgs_solve_once(solver, c, b, m, report)
-    report%damage_passes = 1
     if (.not. (solver%s%damage_in_step .and. c%with_cohesion)) return
     do pass = 2, max_passes + 1
       call damage_factors(solver, c, c%u(:, 1:c%n) + c%shift(:, 1:c%n), changed)
@@ -464,7 +462,6 @@ contains
       once%velocity_seconds = once%velocity_seconds + report%velocity_seconds
       once%converged = once%converged .and. report%converged
       report = once
-      report%damage_passes = pass
     end do
     report%converged = .false.      ! the damage did not settle within max_passes
   end subroutine nlgs_solve
