@@ -13,7 +13,7 @@ module fracas_contact_laws
   public :: law_t, law_from_input, law_friction, law_shift, law_local_problem, &
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
             law_vel_sgr_clb, law_rst_ds_clb, law_czm, cohesive_elimination, coh_size, coh_law, coh_u0t, &
-            coh_h, coh_factor, coh_released, coh_u0n, coh_prev, coh_uend
+            coh_h, coh_factor, coh_released, coh_u0n, coh_prev, coh_uend, cohesive_end_jump
 
   !> Gaps below this (m) count as closed for the laws that act only on closed
   !> contacts: far below any physical length, far above round-off of coordinates.
@@ -28,9 +28,11 @@ module fracas_contact_laws
   !> is coh_factor (a + K u~)); coh_released: the damage energy the contact released
   !> in the step (J per unit thickness), once the step is solved; coh_prev, coh_prev+1:
   !> the factor and the law's answer g of the previous pass (nlgs, damage within the step);
-  !> coh_uend, coh_uend+1: u~ at the end of the step of the last check pass's local solution.
-  integer, parameter :: coh_size = 22, coh_law = 13, coh_u0t = 14, coh_h = 15, coh_factor = 16, coh_released = 17, &
-                        coh_u0n = 18, coh_prev = 19, coh_uend = 21
+  !> coh_uend, coh_uend+1: u~ at the end of the step of the last check pass's local solution;
+  !> coh_j0, coh_j0+1 and coh_jh: the law's jumps at the end of the step are
+  !> coh(coh_j0:coh_j0+1) + coh(coh_jh) u~ (cohesive_end_jump).
+  integer, parameter :: coh_size = 25, coh_law = 13, coh_u0t = 14, coh_h = 15, coh_factor = 16, coh_released = 17, &
+                        coh_u0n = 18, coh_prev = 19, coh_uend = 21, coh_j0 = 23, coh_jh = 25
 
   integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
                         law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
@@ -253,15 +255,18 @@ contains
   !> out: the velocity shift, friction mu, whether the contact takes a reaction
   !> this step, and for a cohesive contact (beta > 0) the cohesive impulse
   !> r_coh = a + K u~ at the start damage beta0 (midpoint: the traction at the mean
-  !> of the start and end jumps, else at the end jumps as LMGC90), eliminated locally
+  !> of the start and end jumps, the end jumps following the bodies' theta
+  !> displacement over the step, so that the impulse's work on the bodies is the
+  !> change of the spring's energy; else at the end jumps as LMGC90, u_t + h u~_t and
+  !> h u~_n), eliminated locally
   !> (coh, see coh_size; coh_law is left 0); weff is the block the local solver solves with
   !> (W, or W' with cohesion). solvable = .false. for a zero or singular block
   !> (both sides driven): no contact reaction then, while the cohesive impulse
   !> still follows from the law.
-  pure subroutine law_local_problem(law, gap, h, u_begin, status_begin, internals, length, w, midpoint, &
+  pure subroutine law_local_problem(law, gap, h, u_begin, status_begin, internals, length, w, midpoint, theta, &
                                     shift, mu, active, cohesive, coh, weff, solvable)
     type(law_t), intent(in) :: law
-    real(wp), intent(in) :: gap, h, u_begin(2), internals(:), length, w(4)
+    real(wp), intent(in) :: gap, h, u_begin(2), internals(:), length, w(4), theta
     logical, intent(in) :: midpoint
     integer, intent(in) :: status_begin
     real(wp), intent(out) :: shift(2), mu, coh(coh_size), weff(4)
@@ -281,12 +286,18 @@ contains
         e = beta**czm_beta_power(law%czm) * length
         if (midpoint) then
           ! the traction at the mean of the start jumps (internals) and the end ones
-          ! (u_t + h u~_t, h u~_n): damage within the step (czm_step_factor)
-          kt = -0.5_wp * h**2 * e * law%czm%ct
-          kn = -0.5_wp * h**2 * e * law%czm%cn
-          coh(9:10) = [-h * e * law%czm%ct * internals(2), -0.5_wp * h * e * law%czm%cn * internals(3)]
+          ! j0 + theta h u~ (the bodies' relative theta displacement added to the start
+          ! jump; normal: to the shifted gap): damage within the step (czm_step_factor)
+          coh(coh_j0:coh_j0 + 1) = [internals(2) + (1.0_wp - theta) * h * u_begin(1), &
+                                    (1.0_wp - theta) * h * shift(2)]
+          coh(coh_jh) = theta * h
+          coh(9:10) = -0.5_wp * h * e * [law%czm%ct, law%czm%cn] * (internals(2:3) + coh(coh_j0:coh_j0 + 1))
+          kt = -0.5_wp * h * coh(coh_jh) * e * law%czm%ct
+          kn = -0.5_wp * h * coh(coh_jh) * e * law%czm%cn
         else
-          ! LMGC90: the traction at the end jumps
+          ! LMGC90: the traction at the end jumps u_t + h u~_t, h u~_n
+          coh(coh_j0:coh_j0 + 1) = [internals(2), 0.0_wp]
+          coh(coh_jh) = h
           kt = -h**2 * e * law%czm%ct
           kn = -h**2 * e * law%czm%cn
           coh(9:10) = [-h * e * law%czm%ct * internals(2), 0.0_wp]  ! from the tangential jump at the start
@@ -309,6 +320,14 @@ contains
     active = active .and. w(4) > 1.0e-18_wp
     solvable = active
   end subroutine law_local_problem
+
+  !> The law's jumps (t, n) at the end of the step of a cohesive contact (coh from
+  !> law_local_problem) whose shifted local velocity is u~ there.
+  pure function cohesive_end_jump(coh, utilde) result(u1)
+    real(wp), intent(in) :: coh(coh_size), utilde(2)
+    real(wp) :: u1(2)
+    u1 = coh(coh_j0:coh_j0 + 1) + coh(coh_jh) * utilde
+  end function cohesive_end_jump
 
   !> Elimination of a cohesive impulse K u~ (K = diag(kt, kn)) from u~ = u~free + W r:
   !> A = (I - W K)^-1 and the block W' = A W the contact part is solved with;

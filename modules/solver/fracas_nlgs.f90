@@ -19,7 +19,8 @@ module fracas_nlgs
                           mailx_velocity_from_impulses
   use fracas_contacts, only: contacts_t
   use fracas_contact_laws, only: law_t, law_local_problem, law_czm, cohesive_elimination, coh_size, coh_law, &
-                                 coh_factor, coh_released, coh_u0t, coh_u0n, coh_h, coh_prev, coh_uend
+                                 coh_factor, coh_released, coh_u0t, coh_u0n, coh_h, coh_prev, coh_uend, &
+                                 cohesive_end_jump
   use fracas_czm, only: czm_t, czm_beta_update, czm_stored_energy, czm_step_dissipation, czm_step_factor, &
                         czm_beta_power
   use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
@@ -41,6 +42,9 @@ module fracas_nlgs
     !> Cohesive damage solved with the contacts within each step (else LMGC90's
     !> explicit update after the step, from the start-of-step damage).
     logical :: damage_in_step = .false.
+    !> The step's theta: with damage within the step, the cohesive jumps follow the
+    !> bodies' theta displacement.
+    real(wp) :: theta = 1.0_wp
   end type nlgs_settings_t
 
   type :: nlgs_report_t
@@ -155,7 +159,7 @@ contains
     real(wp), intent(in) :: h, t_end
     real(wp), intent(out) :: stored, coh_work, released
     integer :: k
-    real(wp) :: ut, un, beta, rc(2), e_new, e_k
+    real(wp) :: ut, un, beta, rc(2), e_new, e_k, u1(2)
     stored = 0.0_wp
     coh_work = 0.0_wp
     released = 0.0_wp
@@ -164,8 +168,12 @@ contains
       associate (z => laws(c%law(k))%czm)
         rc = [cohesive_impulse(c, k, 1), cohesive_impulse(c, k, 2)]
         coh_work = coh_work - 0.5_wp * sum(rc * (c%u(:, k) + c%u_begin(:, k)))
-        ut = c%internals(2, k) + h * c%u(1, k)
-        un = h * (c%u(2, k) + c%shift(2, k))
+        if (c%cohesive(k)) then
+          u1 = cohesive_end_jump(c%coh(:, k), c%u(:, k) + c%shift(:, k))
+        else
+          u1 = [c%internals(2, k) + h * c%u(1, k), h * (c%u(2, k) + c%shift(2, k))]
+        end if
+        ut = u1(1); un = u1(2)
         beta = czm_beta_update(z, c%internals(4, k), ut, un, h)
         if (beta < 1.0_wp .and. c%internals(5, k) < 0.0_wp) c%internals(5, k) = t_end
         e_new = c%length(k) * czm_stored_energy(z, beta, ut, un)
@@ -236,7 +244,8 @@ contains
       c%u_begin(:, k) = contact_velocity(c, k, b%vbegin, m%vbegin)
       if (c%with_cohesion) internals = c%internals(:, k)
       call law_local_problem(laws(c%law(k)), c%gap(k), h, c%u_begin(:, k), c%status_begin(k), internals, &
-                             c%length(k), c%w(:, k), solver%s%damage_in_step, c%shift(:, k), c%mu(k), active, &
+                             c%length(k), c%w(:, k), solver%s%damage_in_step, solver%s%theta, c%shift(:, k), &
+                             c%mu(k), active, &
                              cohesive, coh, weff, solvable)
       c%active(k) = active
       c%cohesive(k) = cohesive
@@ -488,7 +497,7 @@ contains
       if (law == 0) cycle
       associate (p => solver%cz(law), h => c%coh(coh_h, k), old => c%coh(coh_factor, k))
         beta0 = c%internals(4, k)
-        u1 = [c%coh(coh_u0t, k) + h * utilde(1, k), h * utilde(2, k)]
+        u1 = cohesive_end_jump(c%coh(:, k), utilde(:, k))
         beta1 = czm_beta_update(p, beta0, u1(1), u1(2), h)
         g = czm_step_factor(p, beta0, beta1, [c%coh(coh_u0t, k), c%coh(coh_u0n, k)], u1, h) / &
             beta0**czm_beta_power(p)

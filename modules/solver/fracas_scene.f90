@@ -214,6 +214,7 @@ contains
     ns%seed = deck%run%nlgs_seed
     ns%check_pass = deck%run%nlgs_check_pass
     ns%damage_in_step = deck%run%cohesive_damage == 'implicit'
+    ns%theta = deck%run%theta
     call nlgs_init(sc%solver, ns)
 
   contains
