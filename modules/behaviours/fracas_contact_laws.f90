@@ -13,7 +13,8 @@ module fracas_contact_laws
   public :: law_t, law_from_input, law_friction, law_shift, law_local_problem, &
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
             law_vel_sgr_clb, law_rst_ds_clb, law_czm, cohesive_elimination, coh_size, coh_law, coh_u0t, &
-            coh_h, coh_factor, coh_released, coh_u0n, coh_prev, coh_uend, cohesive_end_jump
+            coh_h, coh_factor, coh_released, coh_u0n, coh_prev, coh_uend, coh_bracket, &
+            cohesive_end_jump
 
   !> Gaps below this (m) count as closed for the laws that act only on closed
   !> contacts: far below any physical length, far above round-off of coordinates.
@@ -31,8 +32,10 @@ module fracas_contact_laws
   !> coh_uend, coh_uend+1: u~ at the end of the step of the last check pass's local solution;
   !> coh_j0, coh_j0+1 and coh_jh: the law's jumps at the end of the step are
   !> coh(coh_j0:coh_j0+1) + coh(coh_jh) u~ (cohesive_end_jump).
-  integer, parameter :: coh_size = 25, coh_law = 13, coh_u0t = 14, coh_h = 15, coh_factor = 16, coh_released = 17, &
-                        coh_u0n = 18, coh_prev = 19, coh_uend = 21, coh_j0 = 23, coh_jh = 25
+  !> coh_bracket .. coh_bracket+3: the step's factors with f - g < 0 and > 0 and those
+  !> values (a factor < 0: none yet), bracketing the root f = g (nlgs).
+  integer, parameter :: coh_size = 29, coh_law = 13, coh_u0t = 14, coh_h = 15, coh_factor = 16, coh_released = 17, &
+                        coh_u0n = 18, coh_prev = 19, coh_uend = 21, coh_j0 = 23, coh_jh = 25, coh_bracket = 26
 
   integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
                         law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
@@ -309,6 +312,7 @@ contains
         coh(coh_h) = h
         coh(coh_factor) = 1.0_wp
         coh(coh_prev) = -1.0_wp        ! no previous pass
+        coh([coh_bracket, coh_bracket + 2]) = -1.0_wp
         ! The tensile cohesive impulse also acts while the gap is open, and
         ! between bodies whose normal motion is driven.
         active = .true.

@@ -203,11 +203,11 @@ module fracas_deck
     !> block of sweeps that evaluates without applying (yes), or by the changes of
     !> the block's last sweep (no) (doc/solver.md).
     logical :: nlgs_check_pass = .true.
-    !> Cohesive damage: LMGC90's update after the step from the start-of-step damage
-    !> ('explicit', the default for now), or solved with the contacts within each step,
-    !> so that a crack costs its fracture energy whatever the step ('implicit';
-    !> doc/czm.md §3.2: not yet the default, its cost on dynamic fracture is too high).
-    character(len=8) :: cohesive_damage = 'explicit'
+    !> Cohesive damage: solved with the contacts within each step, so that a crack
+    !> costs its fracture energy whatever the step ('implicit', the default; doc/czm.md
+    !> §3.2), or LMGC90's update after the step from the start-of-step damage
+    !> ('explicit': reproduces LMGC90's outputs).
+    character(len=8) :: cohesive_damage = 'implicit'
   end type run_control_t
 
   !> One command of POSTPRO.DAT (LMGC90's post-processing deck): its name as

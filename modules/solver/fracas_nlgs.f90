@@ -19,7 +19,7 @@ module fracas_nlgs
                           mailx_velocity_from_impulses
   use fracas_contacts, only: contacts_t
   use fracas_contact_laws, only: law_t, law_local_problem, law_czm, cohesive_elimination, coh_size, coh_law, &
-                                 coh_factor, coh_released, coh_u0t, coh_u0n, coh_h, coh_prev, coh_uend, &
+                                 coh_factor, coh_released, coh_u0t, coh_u0n, coh_h, coh_prev, coh_uend, coh_bracket, &
                                  cohesive_end_jump
   use fracas_czm, only: czm_t, czm_beta_update, czm_stored_energy, czm_step_dissipation, czm_step_factor, &
                         czm_beta_power
@@ -444,7 +444,7 @@ contains
   !> step, the spring factors of the cohesive contacts follow the jumps after each
   !> check pass (damage_factors: the NLGS converges only once they settle); should
   !> the final jumps still move a factor, the problem is solved again from there
-  !> (warm start), up to max_passes times. Solving the nonmonotone softening law inside
+  !> (warm start), up to max_passes times within the step's sweep budget. Solving the nonmonotone softening law inside
   !> each local update instead made Gauss–Seidel cycle; a factor frozen over a block of
   !> sweeps keeps each block a linear problem. The report adds up the sweeps of all
   !> passes.
@@ -456,32 +456,41 @@ contains
     type(nlgs_report_t), intent(out) :: report
     integer, parameter :: max_passes = 100
     type(nlgs_report_t) :: once
-    integer :: pass
+    integer :: pass, checks
     logical :: changed
     call nlgs_solve_once(solver, c, b, m, report)
     if (.not. (solver%s%damage_in_step .and. c%with_cohesion)) return
+    checks = solver%s%max_checks
     do pass = 2, max_passes + 1
       call damage_factors(solver, c, c%u(:, 1:c%n) + c%shift(:, 1:c%n), changed)
       if (.not. changed) return
-      if (pass > max_passes) exit
+      ! The passes share the step's sweep budget (sweeps_per_check x max_checks).
+      solver%s%max_checks = checks - (report%sweeps + solver%s%sweeps_per_check - 1) / solver%s%sweeps_per_check
+      if (pass > max_passes .or. solver%s%max_checks < 1) exit
       b%v = b%vfree
       call nlgs_solve_once(solver, c, b, m, once)
+      solver%s%max_checks = checks
       once%sweeps = once%sweeps + report%sweeps
       once%updates = once%updates + report%updates
       once%velocity_seconds = once%velocity_seconds + report%velocity_seconds
       once%converged = once%converged .and. report%converged
       report = once
     end do
-    report%converged = .false.      ! the damage did not settle within max_passes
+    solver%s%max_checks = checks
+    report%converged = .false.      ! the damage did not settle within the passes or the budget
   end subroutine nlgs_solve
 
   !> The spring factor of each cohesive contact with damage within the step, from the
   !> end-of-step jump u~ gives: g = czm_step_factor at the damage the law
-  !> gives there, over beta0^k (1 while the step does not damage); the next factor is
-  !> the secant root of f - g(f) through this pass and the previous one where that
-  !> line has a root in [0, 1] and slopes up, else g (a fixed point pass); A, W' and
-  !> W'^-1 for it. changed: some factor moved by more than the NLGS tolerance
-  !> (relative: the cohesive impulse is proportional to the factor).
+  !> gives there, over beta0^k (1 while the step does not damage). The factor solves
+  !> f = g(f) per contact: once the step's passes bracket the root (f - g of both
+  !> signs), by regula falsi with the Illinois rule; before, by the secant through
+  !> this pass and the previous one where that line slopes up, else g (a fixed point
+  !> pass). g jumps where the end jump reaches the damage envelope (loading and
+  !> unloading differ there): a bracket narrower than the tolerance, whose ends the
+  !> last two passes confirmed, is a solution. A, W' and W'^-1 for the new factor.
+  !> changed: some factor moved by more than the NLGS tolerance (relative: the
+  !> cohesive impulse is proportional to the factor).
   subroutine damage_factors(solver, c, utilde, changed)
     type(nlgs_t), intent(in) :: solver
     type(contacts_t), intent(inout) :: c
@@ -489,7 +498,7 @@ contains
     logical, intent(out) :: changed
     integer :: k, law
     real(wp) :: u1(2), beta0, beta1, f, g, r_now, r_prev, slope
-    logical :: solvable
+    logical :: solvable, bracketed
     changed = .false.
     do k = 1, c%n
       if (.not. c%cohesive(k)) cycle
@@ -504,11 +513,43 @@ contains
         if (abs(g - old) <= solver%s%tol * max(g, old)) cycle
         f = g
         r_now = old - g
-        if (c%coh(coh_prev, k) >= 0.0_wp .and. c%coh(coh_prev, k) /= old) then
-          r_prev = c%coh(coh_prev, k) - c%coh(coh_prev + 1, k)
-          slope = (r_now - r_prev) / (old - c%coh(coh_prev, k))
-          if (slope > 0.0_wp) f = min(1.0_wp, max(0.0_wp, old - r_now / slope))
-        end if
+        r_prev = 0.0_wp
+        if (c%coh(coh_prev, k) >= 0.0_wp) r_prev = c%coh(coh_prev, k) - c%coh(coh_prev + 1, k)
+        associate (br => c%coh(coh_bracket:coh_bracket + 3, k))   ! (f, r) with r < 0, then with r > 0
+          if (r_now < 0.0_wp) then
+            br(1:2) = [old, r_now]
+          else
+            br(3:4) = [old, r_now]
+          end if
+          bracketed = br(1) >= 0.0_wp .and. br(3) >= 0.0_wp
+          if (bracketed .and. abs(br(3) - br(1)) <= solver%s%tol * max(br(1), br(3))) then
+            ! The root is within the tolerance: at a kink of the law (the end jump on
+            ! the damage envelope, g jumps there), confirmed if the last two passes
+            ! fell on either side; else the other end is stale (the neighbours moved).
+            if (r_prev * r_now < 0.0_wp) cycle     ! (the previous pass stays the record)
+            if (r_now < 0.0_wp) then
+              br(3) = -1.0_wp
+            else
+              br(1) = -1.0_wp
+            end if
+            bracketed = .false.
+          end if
+          if (bracketed) then
+            ! regula falsi; Illinois: an end kept twice counts half (it may be stale:
+            ! the neighbours move too), so the next point comes closer to it
+            if (r_prev * r_now > 0.0_wp) then
+              if (r_now < 0.0_wp) then
+                br(4) = 0.5_wp * br(4)
+              else
+                br(2) = 0.5_wp * br(2)
+              end if
+            end if
+            f = br(1) - br(2) * (br(3) - br(1)) / (br(4) - br(2))
+          else if (c%coh(coh_prev, k) >= 0.0_wp .and. c%coh(coh_prev, k) /= old) then
+            slope = (r_now - r_prev) / (old - c%coh(coh_prev, k))
+            if (slope > 0.0_wp) f = min(1.0_wp, max(0.0_wp, old - r_now / slope))
+          end if
+        end associate
         c%coh(coh_prev:coh_prev + 1, k) = [old, g]
         changed = .true.
         old = f

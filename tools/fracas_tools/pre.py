@@ -613,6 +613,7 @@ COMMAND_KEYWORDS = {
     "nlgs_unconverged": ("warn", "fail", "stop"),
     "output_vtk_disks": ("points", "polygons"),
     "output_vtk_precision": ("single", "double"),
+    "cohesive_damage": ("implicit", "explicit"),
     # meshed bodies
     "plane": ("strain", "stress"),
     "newton_tolerance": float,

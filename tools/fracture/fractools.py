@@ -22,7 +22,7 @@ from fracas_tools.fracture import MeshRun  # noqa: E402,F401
 # Deck helpers live in the package (installed with it); re-exported for the gen.py scripts.
 from fracas_tools.cohesive import mp3_separation_opening, perturb_nodes, safe_alert, smooth_ramp  # noqa: E402,F401
 
-__all__ = ["ROOT", "Checker", "MeshRun", "Grid", "structured_quads", "check_energy",
+__all__ = ["ROOT", "Checker", "MeshRun", "Grid", "structured_quads", "check_energy", "growth_energy",
            "run_dir_from_argv", "smooth_ramp", "edge_traction", "perturb_nodes", "safe_alert", "mp3_separation_opening",
            "tip_speed", "crack_arms", "crack_angle", "wave_speeds", "williams_chi"]
 
@@ -151,6 +151,19 @@ def load_from_work(t, work, delta, window):
     win = max(1, int(round(window / (t[1] - t[0]))))
     i = np.arange(win, len(t) - win)
     return i, (work[i + win] - work[i - win]) / (delta[i + win] - delta[i - win])
+
+
+def growth_energy(series, window, gc):
+    """Damage dissipated per broken length in units of gc: the slope of a least-squares
+    line through (crack length, damage dissipated) at the steps where an interface point
+    breaks (the process zone is then in the same state each time, which the ends of a
+    window are not), among the steps of window (boolean, per step of the series).
+    Returns (slope, break events, (first, last crack length))."""
+    c, dd = series["crack_length"], series["damage_dissipated"]
+    events = np.nonzero(np.diff(c) > 0.0)[0] + 1
+    on = events[window[events]]
+    slope = np.polyfit(c[on], dd[on] / gc, 1)[0]
+    return float(slope), len(on), (c[on][0], c[on][-1])
 
 
 def check_energy(ck, series, tol=0.01, what="energy audit"):

@@ -33,7 +33,7 @@ def main():
     # References from the closed forms of czm.md 1.2 (not the solver's update mirrored)
     law = cf.Closed.of(gen.LAWS[name][1])
     run = CzmRun(sys.argv[1], bodies=False)
-    ck = valtools.Checker(f"czm_cyclic/{name} ({gen.LAWS[name][0]})")
+    ck = valtools.Checker(f"czm_cyclic/{name} ({gen.LAWS[name][0]}, cohesive_damage {run.cohesive_damage})")
     segs, _ = gen.schedule(name)
     pr = run.pair(UPPER, LOWER)
     sig = -pr.total("rn") / gen.GLUED
@@ -60,29 +60,37 @@ def main():
     growth = np.diff(beta).max()
     ck.at_most("largest increase of beta between steps", max(0.0, growth), 0.0, note="never heals")
 
-    # 2. secant: below the previous maximum beta is frozen and sigma = beta^k c u
+    # 2. secant: below the previous maximum beta is frozen and sigma = beta^k c u, u the
+    # end jump (LMGC90's explicit update) or the mean of the step's start and end jumps
+    # (damage within the step: midpoint springs, doc/czm.md 3.2)
+    implicit = run.cohesive_damage == "implicit"
+    if implicit:
+        uu = 0.5 * (np.concatenate([[0.0], un[:-1]]) + un)
+    else:
+        uu = un
     prev_max = np.concatenate([[0.0], umax[:-1]])
     below = un <= prev_max
     below[0] = False
     frozen = np.abs(np.diff(beta))[below[1:]]
     ck.at_most("max |beta change| while below the previous maximum", frozen.max(), 0.0,
                note=f"{below.sum()} steps unloading or reloading")
-    sec = np.abs(sig - beta ** k * c * un)[below].max() / smax
+    sec = np.abs(sig - beta ** k * c * uu)[below].max() / smax
     ck.at_most("secant: max |sigma - beta^k c u| / sigma_max", sec, 1e-9)
     for j, (lo, hi) in enumerate(((ends[0], ends[1]), (ends[2], ends[3]))):
         seg = slice(lo + 1, hi + 1)
-        slope = sig[seg] / un[seg]
+        slope = sig[seg] / uu[seg]
         ref = law.beta(un[lo], 1) ** k * c
         ck.rel(f"unloading {j + 1}: slope sigma/u = beta(u_turn)^k c (Pa/m)", slope.mean(), ref, 1e-9)
         ck.at_most(f"unloading {j + 1}: slope spread / slope", (slope.max() - slope.min()) / ref, 1e-9)
         ck.at_most(f"unloading {j + 1}: sigma at u -> 0 extrapolates to 0 (Pa)",
-                   abs(np.polyfit(un[seg], sig[seg], 1)[1]), 1e-6 * smax)
+                   abs(np.polyfit(uu[seg], sig[seg], 1)[1]), 1e-6 * smax)
 
-    # 3. reloading past the maximum: the monotonic curve again, one step of lag
+    # 3. reloading past the maximum: the monotonic curve again (explicit: one step of lag)
     closed = law.sigma(un, 1)
-    lagged = law.beta(prev_max, 1) ** k * c * un            # frozen beta of the step
-    ck.at_most("reported sigma = beta_prev^k c u at every step / sigma_max",
-               np.abs(sig - lagged).max() / smax, 1e-9)
+    if not implicit:
+        lagged = law.beta(prev_max, 1) ** k * c * un            # frozen beta of the step
+        ck.at_most("reported sigma = beta_prev^k c u at every step / sigma_max",
+                   np.abs(sig - lagged).max() / smax, 1e-9)
     for j, lo in enumerate((ends[1], ends[3])):
         i0 = lo + 1 + int(np.argmax(un[lo + 1:] > umax[lo]))   # first step past the old maximum
         ck.true(f"reload {j + 1}: damage resumes at the old maximum {umax[lo] / dpk:.3f} d_peak",

