@@ -38,9 +38,13 @@ module fracas_nlgs
     logical :: check_pass = .true.    !< LMGC90's check pass (else the change of the last sweep)
     character(len=8) :: order = 'stored'
     integer :: seed = 1
-    !> Cohesive damage solved with the contacts within each step (else LMGC90's
-    !> explicit update after the step, from the start-of-step damage).
+    !> Cohesive damage solved with the contacts within each step (else updated after
+    !> the step, from the start-of-step damage).
     logical :: damage_in_step = .false.
+    !> Within the step: the springs' traction at the mean of the start and end jumps
+    !> with the discrete-gradient factor (implicit); else at the end jumps with the
+    !> law's beta^k at the check pass's jumps, as LMGC90 (lmgc90).
+    logical :: damage_midpoint = .false.
   end type nlgs_settings_t
 
   type :: nlgs_report_t
@@ -236,7 +240,7 @@ contains
       c%u_begin(:, k) = contact_velocity(c, k, b%vbegin, m%vbegin)
       if (c%with_cohesion) internals = c%internals(:, k)
       call law_local_problem(laws(c%law(k)), c%gap(k), h, c%u_begin(:, k), c%status_begin(k), internals, &
-                             c%length(k), c%w(:, k), solver%s%damage_in_step, c%shift(:, k), c%mu(k), active, &
+                             c%length(k), c%w(:, k), solver%s%damage_midpoint, c%shift(:, k), c%mu(k), active, &
                              cohesive, coh, weff, solvable)
       c%active(k) = active
       c%cohesive(k) = cohesive
@@ -450,7 +454,7 @@ contains
     integer :: pass
     logical :: changed
     call nlgs_solve_once(solver, c, b, m, report)
-    if (.not. (solver%s%damage_in_step .and. c%with_cohesion)) return
+    if (.not. (solver%s%damage_midpoint .and. c%with_cohesion)) return   ! lmgc90: no further pass
     do pass = 2, max_passes + 1
       call damage_factors(solver, c, c%u(:, 1:c%n) + c%shift(:, 1:c%n), changed)
       if (.not. changed) return
@@ -468,7 +472,9 @@ contains
 
   !> The spring factor of each cohesive contact with damage within the step, from the
   !> end-of-step jump u~ gives: g = czm_step_factor at the damage the law
-  !> gives there, over beta0^k (1 while the step does not damage); the next factor is
+  !> gives there, over beta0^k (1 while the step does not damage), or with end-jump
+  !> springs (lmgc90) (beta1/beta0)^k, as LMGC90's check pass sets the beta its next
+  !> sweeps use (mod_nlgs: updt_CZM without storing, at each check); the next factor is
   !> the secant root of f - g(f) through this pass and the previous one where that
   !> line has a root in [0, 1] and slopes up, else g (a fixed point pass); A, W' and
   !> W'^-1 for it. changed: some factor moved by more than the NLGS tolerance
@@ -490,8 +496,12 @@ contains
         beta0 = c%internals(4, k)
         u1 = [c%coh(coh_u0t, k) + h * utilde(1, k), h * utilde(2, k)]
         beta1 = czm_beta_update(p, beta0, u1(1), u1(2), h)
-        g = czm_step_factor(p, beta0, beta1, [c%coh(coh_u0t, k), c%coh(coh_u0n, k)], u1, h) / &
-            beta0**czm_beta_power(p)
+        if (solver%s%damage_midpoint) then
+          g = czm_step_factor(p, beta0, beta1, [c%coh(coh_u0t, k), c%coh(coh_u0n, k)], u1, h) / &
+              beta0**czm_beta_power(p)
+        else
+          g = (beta1 / beta0)**czm_beta_power(p)   ! LMGC90's check pass: beta^k at the jumps it reached
+        end if
         if (abs(g - old) <= solver%s%tol * max(g, old)) cycle
         f = g
         r_now = old - g
@@ -591,7 +601,11 @@ contains
           end do
         end if
         call norms(report)
-        if (solver%s%damage_in_step .and. c%with_cohesion .and. .not. diverged) call settle_damage()
+        if (solver%s%damage_in_step .and. c%with_cohesion .and. .not. diverged) then
+          ! LMGC90 (lmgc90) sets beta at every check, but only the checks that do not
+          ! converge lead to more sweeps: the bodies get the impulse of the last ones.
+          if (solver%s%damage_midpoint .or. .not. report%converged) call settle_damage()
+        end if
         if (report%converged .or. diverged) exit blocks   ! NaN/Inf: the caller's state check names it
       end do blocks
       call unpack_contacts()

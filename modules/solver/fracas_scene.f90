@@ -213,7 +213,8 @@ contains
     ns%order = deck%run%nlgs_order
     ns%seed = deck%run%nlgs_seed
     ns%check_pass = deck%run%nlgs_check_pass
-    ns%damage_in_step = deck%run%cohesive_damage == 'implicit'
+    ns%damage_in_step = deck%run%cohesive_damage /= 'explicit'
+    ns%damage_midpoint = deck%run%cohesive_damage == 'implicit'
     call nlgs_init(sc%solver, ns)
 
   contains
