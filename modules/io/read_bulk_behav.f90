@@ -100,8 +100,9 @@ contains
     m%law = get_word(ln, 9, 38, 'bulk law name')
     if (m%law == 'RIGID' .or. m%law == 'ELAS' .or. m%law == 'ELAS_PLAS' .or. field(ln, 41, 45) == 'Umas=') then
       m%density = get_real(ln, 46, 59, "density 'Umas='")
-      if (m%density <= 0.0_wp) call line_error(ln, 46, "density 'Umas=' must be > 0, found "//rtoa(m%density))
-      if (m%density < tiny(1.0_wp)) call line_error(ln, 46, "density 'Umas=' "//rtoa(m%density)// &
+      ! 0: massless (quasi-static) meshed bodies, as LMGC90; rigid bodies refuse it (scene)
+      if (m%density < 0.0_wp) call line_error(ln, 46, "density 'Umas=' must be >= 0, found "//rtoa(m%density))
+      if (m%density > 0.0_wp .and. m%density < tiny(1.0_wp)) call line_error(ln, 46, "density 'Umas=' "//rtoa(m%density)// &
         ' is below the smallest normal double ('//rtoa(tiny(1.0_wp))//'): masses would underflow')
       call check_line_end(ln, 59, 'the material line')
     end if

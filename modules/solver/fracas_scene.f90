@@ -111,6 +111,8 @@ contains
         end do
         if (density < 0.0_wp) call input_error(bd%src%file, bd%src%line, 23, "material '"//bd%behav// &
           "' is not defined in BULK_BEHAV.DAT")
+        if (density == 0.0_wp) call input_error(bd%src%file, bd%src%line, 23, "material '"//bd%behav// &
+          "' has density 0: a rigid body needs a mass (only meshed bodies may be massless)")
         call body_area_inertia(bd, area, polar)
         avrd(ib) = bd%avrd
         gyrd = bd%gyrd
