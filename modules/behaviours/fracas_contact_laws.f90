@@ -12,7 +12,7 @@ module fracas_contact_laws
   private
   public :: law_t, law_from_input, law_friction, law_shift, law_local_problem, &
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
-            law_vel_sgr_clb, law_rst_ds_clb, law_czm, cohesive_elimination, coh_size, coh_law, coh_u0t, &
+            law_vel_sgr_clb, law_rst_ds_clb, law_czm, law_iqs_clb_g0, cohesive_elimination, coh_size, coh_law, coh_u0t, &
             coh_h, coh_factor, coh_released, coh_u0n, coh_prev, coh_uend
 
   !> Gaps below this (m) count as closed for the laws that act only on closed
@@ -34,7 +34,7 @@ module fracas_contact_laws
 
   integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
                         law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
-                        law_rst_ds_clb = 7, law_czm = 8
+                        law_rst_ds_clb = 7, law_czm = 8, law_iqs_clb_g0 = 9
 
   !> A contact law ready for the solver.
   type :: law_t
@@ -64,6 +64,9 @@ contains
       call set_mu(param(1), param(1))
     case ('VEL_SGR_CLB')
       law%kind = law_vel_sgr_clb
+      call set_mu(param(1), param(1))
+    case ('IQS_CLB_g0')
+      law%kind = law_iqs_clb_g0
       call set_mu(param(1), param(1))
     case ('IQS_DS_CLB')
       law%kind = law_iqs_ds_clb
@@ -108,7 +111,7 @@ contains
     case default
       call input_error(inp%src%file, inp%src%line, 9, "contact law '"//trim(inp%name)// &
         "' is read but not supported by the solver yet (supported: IQS_CLB, GAP_SGR_CLB, "// &
-        "VEL_SGR_CLB, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB, IQS_MAC_CZM, MAC_CZM, "// &
+        "VEL_SGR_CLB, IQS_CLB_g0, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB, IQS_MAC_CZM, MAC_CZM, "// &
         "MP3_CZM, IQS_MAL_CZM, MAL_CZM, IQS_TH_CZM, TH_CZM, IQS_EXPO_CZM, EXPO_CZM)")
     end select
     ! Checks point at the parameter's own line and column in TACT_BEHAV.DAT.
@@ -217,8 +220,9 @@ contains
     shift = 0.0_wp
     active = .true.
     select case (law%kind)
-    case (law_iqs_clb, law_iqs_ds_clb)
-      ! Inelastic quasi-shock: an existing overlap is forgiven, not pushed out.
+    case (law_iqs_clb, law_iqs_ds_clb, law_iqs_clb_g0)
+      ! Inelastic quasi-shock: an existing overlap is forgiven, not pushed out
+      ! (IQS_CLB_g0: the caller passes the gap beyond the contact's reference gap).
       shift(2) = max(0.0_wp, gap) / h
     case (law_gap_sgr_clb, law_gap_sgr_ds_clb)
       ! Signorini on the predicted end gap: overlaps are corrected.
@@ -248,7 +252,7 @@ contains
   !> Signorini–Coulomb problem the exact local solver takes unchanged:
   !> in: gap at the detection configuration, time step h, local velocity
   !> u_begin (t, n) and status at the start of the step, cohesive internals
-  !> (L, ut, un, beta, TPSini; unused by other laws), the length carried by the
+  !> (L, ut, un, beta, TPSini; IQS_CLB_g0: g_ref; unused by other laws), the length carried by the
   !> contact and its Delassus block w (tt, tn, nt, nn);
   !> out: the velocity shift, friction mu, whether the contact takes a reaction
   !> this step, and for a cohesive contact (beta > 0) the cohesive impulse
@@ -267,7 +271,13 @@ contains
     real(wp), intent(out) :: shift(2), mu, coh(coh_size), weff(4)
     logical, intent(out) :: active, cohesive, solvable
     real(wp) :: beta, e, kt, kn
-    call law_shift(law, gap, h, u_begin, shift, active)
+    if (law%kind == law_iqs_clb_g0) then
+      ! LMGC90's IQS_CLB_g0: closed at the reference gap g_ref (internals(1), the
+      ! gap the contact had at the first step: initially open joints count as shut)
+      call law_shift(law, gap - internals(1), h, u_begin, shift, active)
+    else
+      call law_shift(law, gap, h, u_begin, shift, active)
+    end if
     mu = law_friction(law, status_begin)
     cohesive = .false.
     coh = 0.0_wp

@@ -161,6 +161,7 @@ module fracas_deck
     real(wp) :: normal(2) = 0.0_wp, coor(2) = 0.0_wp
     logical :: has_geometry = .false.        !< n(..)= and coo..= lines present
     real(wp), allocatable :: internals(:)    !< law internal variables, may be empty
+    character(len=15) :: internal_name = ''  !< name of a single internal ('': by count, see write_outbox)
     type(source_t) :: src
   end type contact_record_t
 

@@ -5,9 +5,10 @@ and compare Fracas's last step with LMGC90's DOF.LAST / Vloc_Rloc.LAST.
 
     lmgc90_example.py run CASE_DIR OUT [--set KEY=VALUE ...] [--deck DIR]
     lmgc90_example.py compare OUT CASE_DIR [--pairs-differ N] [--count-differ N] [--sum-rn REL]
-                                         [--max-rn V] [--mean-x REL] [--mean-y REL] [--node B:N:DOF]
+                                         [--max-rn V] [--max-x V] [--mean-x REL] [--mean-y REL]
+                                         [--node B:N:DOF]
     lmgc90_example.py points CASE_DIR OUT [--vmax V]
-    lmgc90_example.py h5 OUT NAME=V1,V2,... [--rtol R]
+    lmgc90_example.py h5 OUT NAME=V1,V2,... [--rtol R] [--atol A]
 
 `compare` checks the contacts (candidate body and contactor, antagonist body and contactor)
 of both codes (their numbers, and at most N pairs in one code only), the summed normal
@@ -95,6 +96,13 @@ def cmd_compare(a):
         ref_big = max((abs(r.rloc[1]) for rs in cr.values() for r in rs), default=0.0)
         ok &= report("largest |rln/H|", big <= a.max_rn, f"{big:.3e} ours, {ref_big:.3e} LMGC90's "
                      f"(at most {a.max_rn:g})")
+    if a.max_x is not None:
+        big = max((np.abs(np.asarray(r.x)[..., :2]).max() for r in read_dof_file(last(ours_box, "DOF")).records),
+                  default=0.0)
+        ref_big = max((np.abs(np.asarray(r.x)[..., :2]).max() for r in read_dof_file(ref / "DOF.LAST").records),
+                      default=0.0)
+        ok &= report("largest displacement", big <= a.max_x, f"{big:.3e} ours, {ref_big:.3e} LMGC90's "
+                     f"(at most {a.max_x:g})")
     for j, tol in enumerate((a.mean_x, a.mean_y)):
         if tol is None:
             continue
@@ -146,8 +154,8 @@ def cmd_h5(a):
             name, values = spec.split("=", 1)
             want = np.array([float(v) for v in values.split(",")])
             got = np.asarray(f[name][()], dtype=float).ravel()[:len(want)]   # the first values
-            good = got.shape == want.shape and np.allclose(got, want, rtol=a.rtol, atol=0.0)
-            ok &= report(name, good, f"{got} against {want} (rtol {a.rtol:g})")
+            good = got.shape == want.shape and np.allclose(got, want, rtol=a.rtol, atol=a.atol)
+            ok &= report(name, good, f"{got} against {want} (rtol {a.rtol:g}, atol {a.atol:g})")
     return 0 if ok else 1
 
 
@@ -166,6 +174,7 @@ def main(argv=None):
     c.add_argument("--sum-rn", type=float)
     c.add_argument("--count-differ", type=int, default=0)
     c.add_argument("--max-rn", type=float, help="largest |rln/H| of our contacts at most this")
+    c.add_argument("--max-x", type=float, help="largest |X(1)|, |X(2)| of our bodies and nodes at most this")
     c.add_argument("--mean-x", type=float)
     c.add_argument("--mean-y", type=float)
     c.add_argument("--node", action="append", metavar="BODY:NODE:DOF",
@@ -175,6 +184,7 @@ def main(argv=None):
     q.add_argument("--vmax", type=float, default=1e-9)
     h = sub.add_parser("h5")
     h.add_argument("out"); h.add_argument("expect", nargs="+")
+    h.add_argument("--atol", type=float, default=0.0)
     h.add_argument("--rtol", type=float, default=1e-12)
     a = p.parse_args(argv)
     return {"run": cmd_run, "compare": cmd_compare, "points": cmd_points, "h5": cmd_h5}[a.cmd](a)
