@@ -12,7 +12,8 @@ module fracas_contact_laws
   private
   public :: law_t, law_from_input, law_friction, law_shift, law_local_problem, &
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
-            law_vel_sgr_clb, law_rst_ds_clb, law_czm, law_iqs_clb_g0, cohesive_elimination, coh_size, coh_law, coh_u0t, &
+            law_vel_sgr_clb, law_rst_ds_clb, law_czm, law_iqs_clb_g0, law_elastic_repell, law_visco_elastic_repell, &
+            cohesive_elimination, coh_size, coh_law, coh_u0t, &
             coh_h, coh_factor, coh_released, coh_u0n, coh_prev, coh_uend
 
   !> Gaps below this (m) count as closed for the laws that act only on closed
@@ -34,7 +35,8 @@ module fracas_contact_laws
 
   integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
                         law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
-                        law_rst_ds_clb = 7, law_czm = 8, law_iqs_clb_g0 = 9
+                        law_rst_ds_clb = 7, law_czm = 8, law_iqs_clb_g0 = 9, law_elastic_repell = 10, &
+                        law_visco_elastic_repell = 11
 
   !> A contact law ready for the solver.
   type :: law_t
@@ -44,6 +46,7 @@ module fracas_contact_laws
     real(wp) :: mu_dynamic = 0.0_wp   !< friction used after sliding
     real(wp) :: mu_static = 0.0_wp    !< friction used otherwise
     real(wp) :: restn = 0.0_wp, restt = 0.0_wp  !< Newton restitution (RST laws)
+    real(wp) :: stiff = 0.0_wp, etan = 0.0_wp   !< repulsive spring F/gap and its dashpot (REPELL laws)
     type(czm_t) :: czm                          !< cohesive part (kind law_czm)
   end type law_t
 
@@ -68,6 +71,15 @@ contains
     case ('IQS_CLB_g0')
       law%kind = law_iqs_clb_g0
       call set_mu(param(1), param(1))
+    case ('ELASTIC_REPELL_CLB')
+      law%kind = law_elastic_repell
+      law%stiff = param(1)
+      call set_mu(param(2), param(2))
+    case ('VISCO_ELASTIC_REPELL_CLB')
+      law%kind = law_visco_elastic_repell
+      law%stiff = param(1)
+      law%etan = param(2)
+      call set_mu(param(3), param(3))
     case ('IQS_DS_CLB')
       law%kind = law_iqs_ds_clb
       call set_mu(param(1), param(2))
@@ -111,7 +123,8 @@ contains
     case default
       call input_error(inp%src%file, inp%src%line, 9, "contact law '"//trim(inp%name)// &
         "' is read but not supported by the solver yet (supported: IQS_CLB, GAP_SGR_CLB, "// &
-        "VEL_SGR_CLB, IQS_CLB_g0, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB, IQS_MAC_CZM, MAC_CZM, "// &
+        "VEL_SGR_CLB, IQS_CLB_g0, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB, ELASTIC_REPELL_CLB, "// &
+        "VISCO_ELASTIC_REPELL_CLB, IQS_MAC_CZM, MAC_CZM, "// &
         "MP3_CZM, IQS_MAL_CZM, MAL_CZM, IQS_TH_CZM, TH_CZM, IQS_EXPO_CZM, EXPO_CZM)")
     end select
     ! Checks point at the parameter's own line and column in TACT_BEHAV.DAT.
@@ -134,6 +147,10 @@ contains
         if (law%czm%family == czm_expo .and. (law%czm%eta <= 0.0_wp .or. law%czm%eta >= 1.0_wp)) &
           call bad(9, "eta of law '"//trim(inp%nickname)//"' must be in (0, 1)")
       end select
+    end if
+    if (law%kind == law_elastic_repell .or. law%kind == law_visco_elastic_repell) then
+      if (law%stiff <= 0.0_wp) call bad(1, "repulsive stiffness F/gap of law '"//trim(inp%nickname)//"' must be > 0")
+      if (law%etan < 0.0_wp) call bad(2, "viscosity of law '"//trim(inp%nickname)//"' must be >= 0")
     end if
     select case (law%kind)
     case (law_rst_clb, law_rst_ds_clb)
@@ -236,6 +253,13 @@ contains
       end if
     case (law_vel_sgr_clb)
       active = gap <= closed_gap
+    case (law_elastic_repell)
+      ! A spring F = stiff (-g_end)+ (law_local_problem adds its compliance to W)
+      shift(2) = gap / h
+    case (law_visco_elastic_repell)
+      ! Spring and dashpot once closed (as LMGC90: from a closed gap on)
+      active = gap <= 0.0_wp
+      if (active) shift(2) = law%stiff / (law%stiff * h + law%etan) * gap
     case (law_rst_clb, law_rst_ds_clb)
       ! Newton restitution once the contact is closed: u+ + e u- >= 0. A gap
       ! within closed_gap of zero is round-off of bodies placed in contact.
@@ -318,6 +342,10 @@ contains
     weff = w
     active = active .and. w(4) > 1.0e-18_wp
     solvable = active
+    ! REPELL laws: the local solve sees the spring's compliance (LMGC90's WWnn), so
+    ! that rn = stiff h (-g_end)+ (+ dashpot): a penalty contact, not Signorini's
+    if (law%kind == law_elastic_repell) weff(4) = weff(4) + 1.0_wp / (law%stiff * h**2)
+    if (law%kind == law_visco_elastic_repell) weff(4) = weff(4) + 1.0_wp / (law%stiff * h**2 + law%etan * h)
   end subroutine law_local_problem
 
   !> Elimination of a cohesive impulse K u~ (K = diag(kt, kn)) from u~ = u~free + W r:
