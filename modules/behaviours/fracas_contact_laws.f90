@@ -12,7 +12,7 @@ module fracas_contact_laws
   private
   public :: law_t, law_from_input, law_friction, law_shift, law_local_problem, &
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
-            law_vel_sgr_clb, law_rst_ds_clb, law_czm, law_iqs_clb_g0, law_elastic_repell, law_visco_elastic_repell, &
+            law_vel_sgr_clb, law_rst_ds_clb, law_czm, law_iqs_clb_g0, law_elastic_repell, law_visco_elastic_repell, law_coupled_dof, &
             cohesive_elimination, coh_size, coh_law, coh_u0t, &
             coh_h, coh_factor, coh_released, coh_u0n, coh_prev, coh_uend
 
@@ -36,7 +36,11 @@ module fracas_contact_laws
   integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
                         law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
                         law_rst_ds_clb = 7, law_czm = 8, law_iqs_clb_g0 = 9, law_elastic_repell = 10, &
-                        law_visco_elastic_repell = 11
+                        law_visco_elastic_repell = 11, law_coupled_dof = 12
+
+  !> COUPLED_DOF's stiff spring, times the contact's smallest Delassus term: the
+  !> relative velocity it leaves is 1/coupled_stiffness of the free one.
+  real(wp), parameter :: coupled_stiffness = 1.0e8_wp
 
   !> A contact law ready for the solver.
   type :: law_t
@@ -71,6 +75,8 @@ contains
     case ('IQS_CLB_g0')
       law%kind = law_iqs_clb_g0
       call set_mu(param(1), param(1))
+    case ('COUPLED_DOF')
+      law%kind = law_coupled_dof
     case ('ELASTIC_REPELL_CLB')
       law%kind = law_elastic_repell
       law%stiff = param(1)
@@ -124,7 +130,7 @@ contains
       call input_error(inp%src%file, inp%src%line, 9, "contact law '"//trim(inp%name)// &
         "' is read but not supported by the solver yet (supported: IQS_CLB, GAP_SGR_CLB, "// &
         "VEL_SGR_CLB, IQS_CLB_g0, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB, ELASTIC_REPELL_CLB, "// &
-        "VISCO_ELASTIC_REPELL_CLB, IQS_MAC_CZM, MAC_CZM, "// &
+        "VISCO_ELASTIC_REPELL_CLB, COUPLED_DOF, IQS_MAC_CZM, MAC_CZM, "// &
         "MP3_CZM, IQS_MAL_CZM, MAL_CZM, IQS_TH_CZM, TH_CZM, IQS_EXPO_CZM, EXPO_CZM)")
     end select
     ! Checks point at the parameter's own line and column in TACT_BEHAV.DAT.
@@ -338,6 +344,22 @@ contains
         weff = coh(5:8)
         return
       end if
+    end if
+    if (law%kind == law_coupled_dof) then
+      ! LMGC90's COUPLED_DOF: both relative velocities held at 0 whatever the sign of
+      ! the reaction (a bilateral joint). Solved as the limit of a stiff spring
+      ! r = K u (the cohesive elimination, K u W ~ coupled_stiffness u): the velocity
+      ! left is 1e-8 of the free one; the Signorini part adds nothing then.
+      cohesive = .true.
+      kn = -coupled_stiffness / max(min(w(1), w(4)), tiny(1.0_wp))
+      coh(11:12) = [kn, kn]
+      call cohesive_elimination(w, kn, kn, coh(1:4), coh(5:8), solvable)
+      coh(coh_h) = h
+      coh(coh_factor) = 1.0_wp
+      coh(coh_prev) = -1.0_wp
+      active = .true.
+      weff = coh(5:8)
+      return
     end if
     weff = w
     active = active .and. w(4) > 1.0e-18_wp

@@ -21,7 +21,7 @@ module fracas_read_tact_behav
     character(len=60) :: layout    !< parameter names, '/' between lines
   end type law_spec_t
 
-  integer, parameter :: n_specs = 28
+  integer, parameter :: n_specs = 29
   type(law_spec_t), parameter :: specs(n_specs) = [ &
     law_spec_t('IQS_CLB', 'fric'), &
     law_spec_t('IQS_CLB_g0', 'fric'), &
@@ -48,6 +48,7 @@ module fracas_read_tact_behav
     law_spec_t('ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi'), &
     law_spec_t('IQS_ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi'), &
     law_spec_t('IQS_STICK', ''), &
+    law_spec_t('COUPLED_DOF', ''), &
     law_spec_t('GAP_SGR_STICK', ''), &
     law_spec_t('ER_MAC_CZM', 'dfric sfric/cn ct/visco w'), &
     law_spec_t('postGAP_IQS_MAC_CZM', 'dfric sfric/cn ct/visco w')]

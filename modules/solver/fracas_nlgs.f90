@@ -245,7 +245,7 @@ contains
       c%active(k) = active
       c%cohesive(k) = cohesive
       if (cohesive) then
-        if (solver%s%damage_in_step) coh(coh_law) = c%law(k)
+        if (solver%s%damage_in_step .and. laws(c%law(k))%kind == law_czm) coh(coh_law) = c%law(k)
         c%coh(:, k) = coh
       end if
       c%wi(:, k) = 0.0_wp

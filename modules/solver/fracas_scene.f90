@@ -14,7 +14,7 @@ module fracas_scene
                           mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint
   use fracas_cracks, only: cracks_t, cracks_init, cracks_update
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
-  use fracas_contact_laws, only: law_t, law_from_input, law_czm, law_iqs_clb_g0
+  use fracas_contact_laws, only: law_t, law_from_input, law_czm, law_iqs_clb_g0, law_coupled_dof
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
   use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts, &
                              history_find_near, history_knows_pair, n_internals
@@ -200,7 +200,8 @@ contains
         internals = reshape([internals, rec_internals], [n_internals, size(cd)])
       end associate
     end do
-    sc%contacts%with_cohesion = any(sc%laws%kind == law_czm .or. sc%laws%kind == law_iqs_clb_g0)
+    sc%contacts%with_cohesion = any(sc%laws%kind == law_czm .or. sc%laws%kind == law_iqs_clb_g0 .or. &
+                                    sc%laws%kind == law_coupled_dof)
     if (sc%contacts%with_cohesion) then
       call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, points, internals)
     else
