@@ -116,12 +116,16 @@ def cmd_compare(a):
         xr = node_x(ref / "DOF.LAST", body, node)[dof - 1]
         unit = 10.0 ** (np.floor(np.log10(abs(xr))) - 6)      # 7th significant digit
         err = abs(xo - xr)
-        ok &= report(f"X({dof}) of MAILx {body} node {node}", err <= unit,
+        what = f"MAILx {body} node {node}" if node else f"RBDY2 {body}"
+        ok &= report(f"X({dof}) of {what}", err <= unit,
                      f"{xo} ours, {xr} LMGC90's: {err:.2e} apart (one printed unit: {unit:.0e})")
     return 0 if ok else 1
 
 
 def node_x(path, body, node):
+    """X of node NODE of meshed body BODY, or of rigid body BODY (node 0)."""
+    if node == 0:
+        return next(r for r in read_dof_file(path).records if r.model == "RBDY2" and r.number == body).x
     r = next(r for r in read_dof_file(path).records if r.model == "MAILx" and r.number == body)
     return r.x[list(r.nodes).index(node)]
 
@@ -178,7 +182,7 @@ def main(argv=None):
     c.add_argument("--mean-x", type=float)
     c.add_argument("--mean-y", type=float)
     c.add_argument("--node", action="append", metavar="BODY:NODE:DOF",
-                   help="X(DOF) of this MAILx node, to the printed digit")
+                   help="X(DOF) of this MAILx node (NODE 0: of rigid body BODY), to the printed digit")
     q = sub.add_parser("points")
     q.add_argument("case"); q.add_argument("out")
     q.add_argument("--vmax", type=float, default=1e-9)
