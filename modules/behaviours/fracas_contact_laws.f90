@@ -12,7 +12,8 @@ module fracas_contact_laws
   private
   public :: law_t, law_from_input, law_friction, law_shift, law_local_problem, &
             law_iqs_clb, law_gap_sgr_clb, law_rst_clb, law_iqs_ds_clb, law_gap_sgr_ds_clb, &
-            law_vel_sgr_clb, law_rst_ds_clb, law_czm, cohesive_elimination, coh_size, coh_law, coh_u0t, &
+            law_vel_sgr_clb, law_rst_ds_clb, law_czm, law_iqs_clb_g0, law_elastic_repell, law_visco_elastic_repell, law_coupled_dof, &
+            cohesive_elimination, coh_size, coh_law, coh_u0t, &
             coh_h, coh_factor, coh_released, coh_u0n, coh_prev, coh_uend, coh_bracket, &
             cohesive_end_jump
 
@@ -39,7 +40,12 @@ module fracas_contact_laws
 
   integer, parameter :: law_iqs_clb = 1, law_gap_sgr_clb = 2, law_rst_clb = 3, &
                         law_iqs_ds_clb = 4, law_gap_sgr_ds_clb = 5, law_vel_sgr_clb = 6, &
-                        law_rst_ds_clb = 7, law_czm = 8
+                        law_rst_ds_clb = 7, law_czm = 8, law_iqs_clb_g0 = 9, law_elastic_repell = 10, &
+                        law_visco_elastic_repell = 11, law_coupled_dof = 12
+
+  !> COUPLED_DOF's stiff spring, times the contact's smallest Delassus term: the
+  !> relative velocity it leaves is 1/coupled_stiffness of the free one.
+  real(wp), parameter :: coupled_stiffness = 1.0e8_wp
 
   !> A contact law ready for the solver.
   type :: law_t
@@ -49,6 +55,7 @@ module fracas_contact_laws
     real(wp) :: mu_dynamic = 0.0_wp   !< friction used after sliding
     real(wp) :: mu_static = 0.0_wp    !< friction used otherwise
     real(wp) :: restn = 0.0_wp, restt = 0.0_wp  !< Newton restitution (RST laws)
+    real(wp) :: stiff = 0.0_wp, etan = 0.0_wp   !< repulsive spring F/gap and its dashpot (REPELL laws)
     type(czm_t) :: czm                          !< cohesive part (kind law_czm)
   end type law_t
 
@@ -70,6 +77,20 @@ contains
     case ('VEL_SGR_CLB')
       law%kind = law_vel_sgr_clb
       call set_mu(param(1), param(1))
+    case ('IQS_CLB_g0')
+      law%kind = law_iqs_clb_g0
+      call set_mu(param(1), param(1))
+    case ('COUPLED_DOF')
+      law%kind = law_coupled_dof
+    case ('ELASTIC_REPELL_CLB')
+      law%kind = law_elastic_repell
+      law%stiff = param(1)
+      call set_mu(param(2), param(2))
+    case ('VISCO_ELASTIC_REPELL_CLB')
+      law%kind = law_visco_elastic_repell
+      law%stiff = param(1)
+      law%etan = param(2)
+      call set_mu(param(3), param(3))
     case ('IQS_DS_CLB')
       law%kind = law_iqs_ds_clb
       call set_mu(param(1), param(2))
@@ -113,7 +134,8 @@ contains
     case default
       call input_error(inp%src%file, inp%src%line, 9, "contact law '"//trim(inp%name)// &
         "' is read but not supported by the solver yet (supported: IQS_CLB, GAP_SGR_CLB, "// &
-        "VEL_SGR_CLB, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB, IQS_MAC_CZM, MAC_CZM, "// &
+        "VEL_SGR_CLB, IQS_CLB_g0, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB, ELASTIC_REPELL_CLB, "// &
+        "VISCO_ELASTIC_REPELL_CLB, COUPLED_DOF, IQS_MAC_CZM, MAC_CZM, "// &
         "MP3_CZM, IQS_MAL_CZM, MAL_CZM, IQS_TH_CZM, TH_CZM, IQS_EXPO_CZM, EXPO_CZM)")
     end select
     ! Checks point at the parameter's own line and column in TACT_BEHAV.DAT.
@@ -136,6 +158,10 @@ contains
         if (law%czm%family == czm_expo .and. (law%czm%eta <= 0.0_wp .or. law%czm%eta >= 1.0_wp)) &
           call bad(9, "eta of law '"//trim(inp%nickname)//"' must be in (0, 1)")
       end select
+    end if
+    if (law%kind == law_elastic_repell .or. law%kind == law_visco_elastic_repell) then
+      if (law%stiff <= 0.0_wp) call bad(1, "repulsive stiffness F/gap of law '"//trim(inp%nickname)//"' must be > 0")
+      if (law%etan < 0.0_wp) call bad(2, "viscosity of law '"//trim(inp%nickname)//"' must be >= 0")
     end if
     select case (law%kind)
     case (law_rst_clb, law_rst_ds_clb)
@@ -222,8 +248,9 @@ contains
     shift = 0.0_wp
     active = .true.
     select case (law%kind)
-    case (law_iqs_clb, law_iqs_ds_clb)
-      ! Inelastic quasi-shock: an existing overlap is forgiven, not pushed out.
+    case (law_iqs_clb, law_iqs_ds_clb, law_iqs_clb_g0)
+      ! Inelastic quasi-shock: an existing overlap is forgiven, not pushed out
+      ! (IQS_CLB_g0: the caller passes the gap beyond the contact's reference gap).
       shift(2) = max(0.0_wp, gap) / h
     case (law_gap_sgr_clb, law_gap_sgr_ds_clb)
       ! Signorini on the predicted end gap: overlaps are corrected.
@@ -237,6 +264,13 @@ contains
       end if
     case (law_vel_sgr_clb)
       active = gap <= closed_gap
+    case (law_elastic_repell)
+      ! A spring F = stiff (-g_end)+ (law_local_problem adds its compliance to W)
+      shift(2) = gap / h
+    case (law_visco_elastic_repell)
+      ! Spring and dashpot once closed (as LMGC90: from a closed gap on)
+      active = gap <= 0.0_wp
+      if (active) shift(2) = law%stiff / (law%stiff * h + law%etan) * gap
     case (law_rst_clb, law_rst_ds_clb)
       ! Newton restitution once the contact is closed: u+ + e u- >= 0. A gap
       ! within closed_gap of zero is round-off of bodies placed in contact.
@@ -253,7 +287,7 @@ contains
   !> Signorini–Coulomb problem the exact local solver takes unchanged:
   !> in: gap at the detection configuration, time step h, local velocity
   !> u_begin (t, n) and status at the start of the step, cohesive internals
-  !> (L, ut, un, beta, TPSini; unused by other laws), the length carried by the
+  !> (L, ut, un, beta, TPSini; IQS_CLB_g0: g_ref; unused by other laws), the length carried by the
   !> contact and its Delassus block w (tt, tn, nt, nn);
   !> out: the velocity shift, friction mu, whether the contact takes a reaction
   !> this step, and for a cohesive contact (beta > 0) the cohesive impulse
@@ -275,7 +309,13 @@ contains
     real(wp), intent(out) :: shift(2), mu, coh(coh_size), weff(4)
     logical, intent(out) :: active, cohesive, solvable
     real(wp) :: beta, e, kt, kn
-    call law_shift(law, gap, h, u_begin, shift, active)
+    if (law%kind == law_iqs_clb_g0) then
+      ! LMGC90's IQS_CLB_g0: closed at the reference gap g_ref (internals(1), the
+      ! gap the contact had at the first step: initially open joints count as shut)
+      call law_shift(law, gap - internals(1), h, u_begin, shift, active)
+    else
+      call law_shift(law, gap, h, u_begin, shift, active)
+    end if
     mu = law_friction(law, status_begin)
     cohesive = .false.
     coh = 0.0_wp
@@ -320,9 +360,29 @@ contains
         return
       end if
     end if
+    if (law%kind == law_coupled_dof) then
+      ! LMGC90's COUPLED_DOF: both relative velocities held at 0 whatever the sign of
+      ! the reaction (a bilateral joint). Solved as the limit of a stiff spring
+      ! r = K u (the cohesive elimination, K u W ~ coupled_stiffness u): the velocity
+      ! left is 1e-8 of the free one; the Signorini part adds nothing then.
+      cohesive = .true.
+      kn = -coupled_stiffness / max(min(w(1), w(4)), tiny(1.0_wp))
+      coh(11:12) = [kn, kn]
+      call cohesive_elimination(w, kn, kn, coh(1:4), coh(5:8), solvable)
+      coh(coh_h) = h
+      coh(coh_factor) = 1.0_wp
+      coh(coh_prev) = -1.0_wp
+      active = .true.
+      weff = coh(5:8)
+      return
+    end if
     weff = w
     active = active .and. w(4) > 1.0e-18_wp
     solvable = active
+    ! REPELL laws: the local solve sees the spring's compliance (LMGC90's WWnn), so
+    ! that rn = stiff h (-g_end)+ (+ dashpot): a penalty contact, not Signorini's
+    if (law%kind == law_elastic_repell) weff(4) = weff(4) + 1.0_wp / (law%stiff * h**2)
+    if (law%kind == law_visco_elastic_repell) weff(4) = weff(4) + 1.0_wp / (law%stiff * h**2 + law%etan * h)
   end subroutine law_local_problem
 
   !> The law's jumps (t, n) at the end of the step of a cohesive contact (coh from

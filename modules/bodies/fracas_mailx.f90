@@ -576,6 +576,7 @@ contains
     fidx = pack([(i, i=1, nd)], .not. reshape(m%driven(:, n0:m%node_first(b + 1) - 1), [nd]))
     nf = size(fidx)
     c2 = (m%h * m%theta)**2
+    if (nf > 0 .and. all(m%mdiag(:, n0:m%node_first(b + 1) - 1) == 0.0_wp)) call check_massless_held(m, b, src)
     if (m%dense(b)) then
       a = c2 * reshape(m%dk(m%dfirst(b) + 1:m%dfirst(b) + nd * nd), [nd, nd])
       if (m%lumped(b)) then
@@ -644,6 +645,41 @@ contains
       if (allocated(bb%c)) deallocate (bb%c)
     end associate
   end subroutine factorize_body
+
+  !> A massless (quasi-static) body is solved by its stiffness alone: its driven
+  !> dofs must hold its three rigid motions (two translations, the rotation), else
+  !> K_ff is singular (a Cholesky of round-off pivots would pass silently).
+  subroutine check_massless_held(m, b, src)
+    type(mailx_t), intent(in) :: m
+    integer, intent(in) :: b
+    type(source_t), intent(in), optional :: src
+    real(wp) :: g(3, 3), r(3), c(2), d(2), scale, det
+    integer :: k, j
+    character(len=:), allocatable :: msg
+    c = sum(m%ref(:, m%node_first(b):m%node_first(b + 1) - 1), dim=2) / (m%node_first(b + 1) - m%node_first(b))
+    scale = 0.0_wp
+    g = 0.0_wp
+    do k = m%node_first(b), m%node_first(b + 1) - 1
+      d = m%ref(:, k) - c
+      scale = max(scale, norm2(d))
+      do j = 1, 2
+        if (.not. m%driven(j, k)) cycle
+        ! the driven dof's value in the rigid modes x-translation, y-translation, rotation
+        r = [merge(1.0_wp, 0.0_wp, j == 1), merge(1.0_wp, 0.0_wp, j == 2), merge(-d(2), d(1), j == 1)]
+        g = g + spread(r, 2, 3) * spread(r, 1, 3)
+      end do
+    end do
+    if (scale > 0.0_wp) then
+      g(3, :) = g(3, :) / scale; g(:, 3) = g(:, 3) / scale
+    end if
+    det = g(1, 1) * (g(2, 2) * g(3, 3) - g(2, 3) * g(3, 2)) - g(1, 2) * (g(2, 1) * g(3, 3) - g(2, 3) * g(3, 1)) + &
+          g(1, 3) * (g(2, 1) * g(3, 2) - g(2, 2) * g(3, 1))
+    if (det > 1.0e-10_wp * max(g(1, 1) * g(2, 2) * g(3, 3), tiny(1.0_wp))) return
+    msg = 'MAILx body '//itoa(b)//' is massless (density 0: quasi-static) and its driven dofs leave a rigid '// &
+          'motion free: drive enough dofs to hold both translations and the rotation'
+    if (present(src)) call input_error(src%file, src%line, 0, msg)
+    call fatal(msg)
+  end subroutine check_massless_held
 
   !> An element must be counter-clockwise with a positive Jacobian everywhere,
   !> and not so small against its body's extent that double precision cannot

@@ -14,7 +14,7 @@ module fracas_contacts
 
   type :: contacts_t
     integer :: n = 0
-    logical :: with_cohesion = .false.       !< cohesive laws in the scene: internals and coh are allocated
+    logical :: with_cohesion = .false.       !< cohesive laws (or IQS_CLB_g0) in the scene: internals and coh are allocated
     integer, allocatable :: inter(:)         !< interaction type id (fracas_ids)
     integer, allocatable :: cd(:), an(:)     !< candidate / antagonist contactor
     integer, allocatable :: cdb(:), anb(:)   !< their bodies (index within their model)

@@ -37,6 +37,7 @@ contains
       end if
     end if
     gap = dist - r_cd - ax2
-    point = closest + (ax2 + 0.5_wp * gap) * normal
+    ! On the disk's surface, as LMGC90 puts it (its lever arm is the radius)
+    point = c_cd - r_cd * normal
   end subroutine dkjcx_geometry
 end module fracas_dkjcx

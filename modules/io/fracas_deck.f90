@@ -65,7 +65,7 @@ module fracas_deck
     character(len=5) :: element = ''     !< 'T3xxx', 'Q4xxx', 'T6xxx', 'Q8xxx', 'Q4P0x', ...
     character(len=5) :: kinematic = 'small'   !< kine_: small | large
     character(len=5) :: formulation = ''      !< form_: UpdtL | TotaL (large kinematics)
-    character(len=5) :: material = 'elas_'    !< mater: elas_ | J2iso | ...
+    character(len=5) :: material = ''         !< mater: elas_ | J2iso | ... ('' until given or set from the material)
     character(len=5) :: mass_storage = 'lump_' !< mstrg: lump_ | coher
     character(len=5) :: anisotropy = 'iso__'  !< aniso
     character(len=5) :: external = 'no___'    !< isext
@@ -161,6 +161,7 @@ module fracas_deck
     real(wp) :: normal(2) = 0.0_wp, coor(2) = 0.0_wp
     logical :: has_geometry = .false.        !< n(..)= and coo..= lines present
     real(wp), allocatable :: internals(:)    !< law internal variables, may be empty
+    character(len=15) :: internal_name = ''  !< name of a single internal ('': by count, see write_outbox)
     type(source_t) :: src
   end type contact_record_t
 

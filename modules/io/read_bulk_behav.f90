@@ -100,8 +100,9 @@ contains
     m%law = get_word(ln, 9, 38, 'bulk law name')
     if (m%law == 'RIGID' .or. m%law == 'ELAS' .or. m%law == 'ELAS_PLAS' .or. field(ln, 41, 45) == 'Umas=') then
       m%density = get_real(ln, 46, 59, "density 'Umas='")
-      if (m%density <= 0.0_wp) call line_error(ln, 46, "density 'Umas=' must be > 0, found "//rtoa(m%density))
-      if (m%density < tiny(1.0_wp)) call line_error(ln, 46, "density 'Umas=' "//rtoa(m%density)// &
+      ! 0: massless (quasi-static) meshed bodies, as LMGC90; rigid bodies refuse it (scene)
+      if (m%density < 0.0_wp) call line_error(ln, 46, "density 'Umas=' must be >= 0, found "//rtoa(m%density))
+      if (m%density > 0.0_wp .and. m%density < tiny(1.0_wp)) call line_error(ln, 46, "density 'Umas=' "//rtoa(m%density)// &
         ' is below the smallest normal double ('//rtoa(tiny(1.0_wp))//'): masses would underflow')
       call check_line_end(ln, 59, 'the material line')
     end if
@@ -110,17 +111,19 @@ contains
   !> The continuation lines of an ELAS or ELAS_PLAS material, from line i up
   !> to the next keyword; i ends there. ELAS: 'elas: standard', 'ani_:
   !> isotropic', 'EYng= E  Epss= nu'. ELAS_PLAS adds 'crit: Von-Mises',
-  !> 'isoh: linear', 'SIG0= s0  K___= k' (sigma_y = s0 + k p), 'cinh: none',
-  !> 'visc: none'.
+  !> 'isoh: linear', 'SIG0= s0  K___= k' (sigma_y = s0 + k p), or 'isoh: Swift',
+  !> 'C0__= c  EPS0= e  n___= 1' (sigma_y = c (e + p): Swift's law with n = 1),
+  !> 'cinh: none', 'visc: none'.
   subroutine read_elastic_plastic(tf, i, m)
     type(text_file_t), intent(in) :: tf
     integer, intent(inout) :: i
     type(material_input_t), intent(inout) :: m
-    integer, parameter :: n_labels = 8
+    integer, parameter :: n_labels = 9
     character(len=5), parameter :: labels(n_labels) = &
-      ['elas:', 'ani_:', 'EYng=', 'crit:', 'isoh:', 'SIG0=', 'cinh:', 'visc:']
+      ['elas:', 'ani_:', 'EYng=', 'crit:', 'isoh:', 'SIG0=', 'cinh:', 'visc:', 'C0__=']
     integer :: seen(n_labels), k, nl
-    logical :: plastic
+    logical :: plastic, swift
+    real(wp) :: c0, eps0, expo
     character(len=5) :: label
     character(len=:), allocatable :: what
 
@@ -151,7 +154,19 @@ contains
         case ('crit:')
           call need_option(ln, 'Von-Mises', 'yield criterion')
         case ('isoh:')
-          call need_option(ln, 'linear', 'isotropic hardening')
+          swift = index(adjustl(field(ln, 46, 60)), 'Swift') == 1
+          if (.not. swift) call need_option(ln, 'linear', 'isotropic hardening')
+        case ('C0__=')
+          ! LMGC90's Swift law sigma_y = C0 (EPS0 + p)^n; n = 1 is linear hardening
+          c0 = get_real(ln, 46, 59, "Swift coefficient 'C0__='")
+          eps0 = get_real(ln, 67, 80, "Swift strain offset 'EPS0='")
+          expo = get_real(ln, 88, 101, "Swift exponent 'n___='")
+          if (expo /= 1.0_wp) call line_error(ln, 88, "Swift hardening C0 (EPS0 + p)^n is supported for n = 1 "// &
+            "only (linear hardening), found n = "//rtoa(expo))
+          m%yield0 = c0 * eps0
+          m%hardening = c0
+          if (m%yield0 <= 0.0_wp) call line_error(ln, 46, "initial yield stress C0 EPS0 must be > 0, found " &
+                                                  //rtoa(m%yield0))
         case ('SIG0=')
           m%yield0 = get_real(ln, 46, 59, "initial yield stress 'SIG0='")
           m%hardening = get_real(ln, 67, 80, "hardening modulus 'K___='")
@@ -168,8 +183,9 @@ contains
       i = i + 1
     end do
     if (seen(3) == 0) call line_error_src(m, what//" needs its elastic constants line 'EYng= ...  Epss= ...'")
-    if (plastic .and. seen(6) == 0) &
-      call line_error_src(m, what//" needs its hardening line 'SIG0= ...  K___= ...' (after 'isoh: linear')")
+    if (plastic .and. seen(6) == 0 .and. seen(9) == 0) &
+      call line_error_src(m, what//" needs its hardening line 'SIG0= ...  K___= ...' (after 'isoh: linear') "// &
+                          "or 'C0__= ...  EPS0= ...  n___= ...' (after 'isoh: Swift')")
 
   contains
 

@@ -204,7 +204,7 @@ contains
     case ('driven_start')
       s = 'one of lmgc90, imposed, initial'
     case ('cohesive_damage')
-      s = 'one of implicit, explicit'
+      s = 'one of implicit, explicit, lmgc90'
     case ('detection_approach', 'nlgs_check_pass')
       s = 'one of yes, no'
     case ('nlgs_unconverged')
@@ -303,7 +303,7 @@ contains
       end select
     case ('cohesive_damage')
       select case (lv)
-      case ('implicit', 'explicit')
+      case ('implicit', 'explicit', 'lmgc90')
         run%cohesive_damage = lv
       case default
         call bad()

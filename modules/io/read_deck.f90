@@ -2,11 +2,12 @@
 !> that its files agree with each other. Each error names the file, line and
 !> column of the record that refers to something missing.
 !>
-!> Files: BULK_BEHAV.DAT, BODIES.DAT and TACT_BEHAV.DAT are required, and
-!> MODELS.DAT when BODIES.DAT has meshed (MAILx) bodies; DRV_DOF.DAT, DOF.INI,
-!> Vloc_Rloc.INI, GPV.INI and POSTPRO.DAT are optional (absent: nothing driven,
-!> everything at rest, no contact history, no initial Gauss-point values, no
-!> POSTPRO files; a missing DOF.INI or Vloc_Rloc.INI is said in a warning). A
+!> Files: BULK_BEHAV.DAT and BODIES.DAT are required, and MODELS.DAT when
+!> BODIES.DAT has meshed (MAILx) bodies; TACT_BEHAV.DAT, DRV_DOF.DAT, DOF.INI,
+!> Vloc_Rloc.INI, GPV.INI and POSTPRO.DAT are optional (absent: no contact, nothing
+!> driven, everything at rest, no contact history, no initial Gauss-point values, no
+!> POSTPRO files; a missing TACT_BEHAV.DAT, DOF.INI or Vloc_Rloc.INI is said in a
+!> warning). A
 !> rigid deck reads no MODELS.DAT nor GPV.INI. The run control comes from
 !> COMMAND.DAT (or the file given) and the --set settings; without
 !> COMMAND.DAT, from the defaults and --set alone (time_step and
@@ -80,7 +81,14 @@ contains
       allocate (deck%models(0), deck%gpv_ini(0))
     end if
 
-    call read_tact_behav(required(dat//'/TACT_BEHAV.DAT'), deck%laws, deck%see_rules)
+    path = dat//'/TACT_BEHAV.DAT'
+    if (file_exists(path)) then
+      call read_tact_behav(path, deck%laws, deck%see_rules)
+    else
+      ! LMGC90's decks without contact (a meshed beam, a bar) come without it
+      allocate (deck%laws(0), deck%see_rules(0))
+      call warn(path//' not found: no contact laws, the bodies never touch')
+    end if
 
     path = dat//'/DRV_DOF.DAT'
     if (file_exists(path)) then

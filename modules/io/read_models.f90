@@ -10,6 +10,7 @@
 !> (iso__), isext (no___). The rigid model (element Rxx2D) that pylmgc90
 !> writes for rigid bodies is read and kept; no element may use it.
 module fracas_read_models
+  use fracas_kinds, only: wp
   use fracas_deck, only: model_input_t, body_input_t, material_input_t
   use fracas_errors, only: input_error, warn
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, is_blank, &
@@ -176,10 +177,12 @@ contains
 
   !> Every element of the meshed bodies names a model of MODELS that suits its
   !> geometry, and a material whose law suits the model's 'mater' option
-  !> (elas_: ELAS, J2iso: ELAS_PLAS). Errors at the element's 'model ... behav' line.
+  !> (elas_: ELAS, J2iso: ELAS_PLAS). A model without 'mater' takes it from the law
+  !> of its first element's material, as LMGC90's internal models do (e.g. its
+  !> braudel example). Errors at the element's 'model ... behav' line.
   subroutine check_element_models(bodies, models, materials)
     type(body_input_t), intent(in) :: bodies(:)
-    type(model_input_t), intent(in) :: models(:)
+    type(model_input_t), intent(inout) :: models(:)
     type(material_input_t), intent(in) :: materials(:)
     integer :: ib, ie, im, imat, k
     character(len=:), allocatable :: need
@@ -208,6 +211,14 @@ contains
               if (materials(k)%nickname == e%behav) imat = k
             end do
             if (imat == 0) cycle   ! reported by the BODIES.DAT reader
+            if (m%material == '') then
+              m%material = 'elas_'
+              if (materials(imat)%law == 'ELAS_PLAS') m%material = 'J2iso'
+            end if
+            if (materials(imat)%law == 'ELAS_PLAS' .and. materials(imat)%density == 0.0_wp) &
+              call input_error(e%model_src%file, e%model_src%line, 37, "material '"//trim(e%behav)// &
+                               "' is massless (Umas = 0) and plastic (ELAS_PLAS): quasi-static plasticity is "// &
+                               'not supported (its Newton loop does not converge here); give it a density')
             need = 'ELAS'
             if (m%material == 'J2iso') need = 'ELAS_PLAS'
             if (materials(imat)%law /= need) &

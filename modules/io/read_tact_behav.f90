@@ -17,11 +17,11 @@ module fracas_read_tact_behav
   public :: read_tact_behav, law_param_count, law_param_names, known_laws
 
   type :: law_spec_t
-    character(len=20) :: name
+    character(len=30) :: name
     character(len=60) :: layout    !< parameter names, '/' between lines
   end type law_spec_t
 
-  integer, parameter :: n_specs = 27
+  integer, parameter :: n_specs = 29
   type(law_spec_t), parameter :: specs(n_specs) = [ &
     law_spec_t('IQS_CLB', 'fric'), &
     law_spec_t('IQS_CLB_g0', 'fric'), &
@@ -33,6 +33,7 @@ module fracas_read_tact_behav
     law_spec_t('RST_CLB', 'restn restt/fric'), &
     law_spec_t('RST_DS_CLB', 'restn restt/dfric sfric'), &
     law_spec_t('ELASTIC_REPELL_CLB', 'stiff/fric'), &
+    law_spec_t('VISCO_ELASTIC_REPELL_CLB', 'stiff etan/fric'), &
     law_spec_t('IQS_WET_DS_CLB', 'cohn coht/wethk/dfric sfric'), &
     law_spec_t('MAC_CZM', 'dfric sfric/cn ct/visco w'), &
     law_spec_t('IQS_MAC_CZM', 'dfric sfric/cn ct/visco w'), &
@@ -47,6 +48,7 @@ module fracas_read_tact_behav
     law_spec_t('ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi'), &
     law_spec_t('IQS_ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi'), &
     law_spec_t('IQS_STICK', ''), &
+    law_spec_t('COUPLED_DOF', ''), &
     law_spec_t('GAP_SGR_STICK', ''), &
     law_spec_t('ER_MAC_CZM', 'dfric sfric/cn ct/visco w'), &
     law_spec_t('postGAP_IQS_MAC_CZM', 'dfric sfric/cn ct/visco w')]

@@ -147,7 +147,8 @@ contains
       if (.not. is_data(tf, i + 1)) call line_error(ln, 1, "expected the column header line (' cdbdy  numbr ...') " &
                                                     //'after $icdan')
       j = i + 1
-      if (field(tf%lines(j), 2, 6) == 'cdbdy') j = j + 1
+      ! (indented in LMGC90's older files, e.g. examples/Pre/wall2D/cisaillement_mur)
+      if (index(adjustl(tf%lines(j)%text), 'cdbdy ') == 1) j = j + 1
       if (.not. is_data(tf, j)) call line_error(ln, 1, 'expected the id line (bodies, contactors, law, status) of ' &
                                                 //trim(r%inter)//' '//itoa(r%number))
     end associate

@@ -158,7 +158,11 @@ contains
         if (allocated(r%internals)) then
           n = size(r%internals)
           if (n > 0) then
-            write (u, '(a)') '#'//internal_comment(n)
+            if (len_trim(r%internal_name) > 0 .and. n == 1) then
+              write (u, '(a)') '#'//r%internal_name
+            else
+              write (u, '(a)') '#'//internal_comment(n)
+            end if
             do j = 1, n, internals_per_line
               write (u, '(*(1x,d14.7))') r%internals(j:min(n, j + internals_per_line - 1))
             end do

@@ -39,11 +39,15 @@ module fracas_nlgs
     logical :: check_pass = .true.    !< LMGC90's check pass (else the change of the last sweep)
     character(len=8) :: order = 'stored'
     integer :: seed = 1
-    !> Cohesive damage solved with the contacts within each step (else LMGC90's
-    !> explicit update after the step, from the start-of-step damage).
+    !> Cohesive damage solved with the contacts within each step (else updated after
+    !> the step, from the start-of-step damage).
     logical :: damage_in_step = .false.
-    !> The step's theta: with damage within the step, the cohesive jumps follow the
-    !> bodies' theta displacement.
+    !> Within the step: the springs' traction at the mean of the start and end jumps
+    !> with the discrete-gradient factor (implicit); else at the end jumps with the
+    !> law's beta^k at the check pass's jumps, as LMGC90 (lmgc90).
+    logical :: damage_midpoint = .false.
+    !> The step's theta: with midpoint springs, the cohesive jumps follow the bodies'
+    !> theta displacement.
     real(wp) :: theta = 1.0_wp
   end type nlgs_settings_t
 
@@ -244,13 +248,13 @@ contains
       c%u_begin(:, k) = contact_velocity(c, k, b%vbegin, m%vbegin)
       if (c%with_cohesion) internals = c%internals(:, k)
       call law_local_problem(laws(c%law(k)), c%gap(k), h, c%u_begin(:, k), c%status_begin(k), internals, &
-                             c%length(k), c%w(:, k), solver%s%damage_in_step, solver%s%theta, c%shift(:, k), &
+                             c%length(k), c%w(:, k), solver%s%damage_midpoint, solver%s%theta, c%shift(:, k), &
                              c%mu(k), active, &
                              cohesive, coh, weff, solvable)
       c%active(k) = active
       c%cohesive(k) = cohesive
       if (cohesive) then
-        if (solver%s%damage_in_step) coh(coh_law) = c%law(k)
+        if (solver%s%damage_in_step .and. laws(c%law(k))%kind == law_czm) coh(coh_law) = c%law(k)
         c%coh(:, k) = coh
       end if
       c%wi(:, k) = 0.0_wp
@@ -459,7 +463,7 @@ contains
     integer :: pass, checks
     logical :: changed
     call nlgs_solve_once(solver, c, b, m, report)
-    if (.not. (solver%s%damage_in_step .and. c%with_cohesion)) return
+    if (.not. (solver%s%damage_midpoint .and. c%with_cohesion)) return   ! lmgc90: no further pass
     checks = solver%s%max_checks
     do pass = 2, max_passes + 1
       call damage_factors(solver, c, c%u(:, 1:c%n) + c%shift(:, 1:c%n), changed)
@@ -482,15 +486,17 @@ contains
 
   !> The spring factor of each cohesive contact with damage within the step, from the
   !> end-of-step jump u~ gives: g = czm_step_factor at the damage the law
-  !> gives there, over beta0^k (1 while the step does not damage). The factor solves
-  !> f = g(f) per contact: once the step's passes bracket the root (f - g of both
-  !> signs), by regula falsi with the Illinois rule; before, by the secant through
-  !> this pass and the previous one where that line slopes up, else g (a fixed point
-  !> pass). g jumps where the end jump reaches the damage envelope (loading and
-  !> unloading differ there): a bracket narrower than the tolerance, whose ends the
-  !> last two passes confirmed, is a solution. A, W' and W'^-1 for the new factor.
-  !> changed: some factor moved by more than the NLGS tolerance (relative: the
-  !> cohesive impulse is proportional to the factor).
+  !> gives there, over beta0^k (1 while the step does not damage), or with end-jump
+  !> springs (lmgc90) g = (beta1/beta0)^k, as LMGC90's check pass sets the beta its
+  !> next sweeps use (updated at each check, not stored), taken as it is. With
+  !> midpoint springs the factor solves f = g(f) per contact: once the step's passes
+  !> bracket the root (f - g of both signs), by regula falsi with the Illinois rule;
+  !> before, by the secant through this pass and the previous one where that line
+  !> slopes up, else g (a fixed point pass). g jumps where the end jump reaches the
+  !> damage envelope (loading and unloading differ there): a bracket narrower than
+  !> the tolerance, whose ends the last two passes confirmed, is a solution. A, W' and
+  !> W'^-1 for the new factor. changed: some factor moved by more than the NLGS
+  !> tolerance (relative: the cohesive impulse is proportional to the factor).
   subroutine damage_factors(solver, c, utilde, changed)
     type(nlgs_t), intent(in) :: solver
     type(contacts_t), intent(inout) :: c
@@ -508,48 +514,54 @@ contains
         beta0 = c%internals(4, k)
         u1 = cohesive_end_jump(c%coh(:, k), utilde(:, k))
         beta1 = czm_beta_update(p, beta0, u1(1), u1(2), h)
-        g = czm_step_factor(p, beta0, beta1, [c%coh(coh_u0t, k), c%coh(coh_u0n, k)], u1, h) / &
-            beta0**czm_beta_power(p)
+        if (solver%s%damage_midpoint) then
+          g = czm_step_factor(p, beta0, beta1, [c%coh(coh_u0t, k), c%coh(coh_u0n, k)], u1, h) / &
+              beta0**czm_beta_power(p)
+        else
+          g = (beta1 / beta0)**czm_beta_power(p)   ! LMGC90's check pass: beta^k at the jumps it reached
+        end if
         if (abs(g - old) <= solver%s%tol * max(g, old)) cycle
         f = g
         r_now = old - g
         r_prev = 0.0_wp
         if (c%coh(coh_prev, k) >= 0.0_wp) r_prev = c%coh(coh_prev, k) - c%coh(coh_prev + 1, k)
-        associate (br => c%coh(coh_bracket:coh_bracket + 3, k))   ! (f, r) with r < 0, then with r > 0
-          if (r_now < 0.0_wp) then
-            br(1:2) = [old, r_now]
-          else
-            br(3:4) = [old, r_now]
-          end if
-          bracketed = br(1) >= 0.0_wp .and. br(3) >= 0.0_wp
-          if (bracketed .and. abs(br(3) - br(1)) <= solver%s%tol * max(br(1), br(3))) then
-            ! The root is within the tolerance: at a kink of the law (the end jump on
-            ! the damage envelope, g jumps there), confirmed if the last two passes
-            ! fell on either side; else the other end is stale (the neighbours moved).
-            if (r_prev * r_now < 0.0_wp) cycle     ! (the previous pass stays the record)
+        if (solver%s%damage_midpoint) then     ! (lmgc90: f = g, as LMGC90's checks)
+          associate (br => c%coh(coh_bracket:coh_bracket + 3, k))   ! (f, r) with r < 0, then with r > 0
             if (r_now < 0.0_wp) then
-              br(3) = -1.0_wp
+              br(1:2) = [old, r_now]
             else
-              br(1) = -1.0_wp
+              br(3:4) = [old, r_now]
             end if
-            bracketed = .false.
-          end if
-          if (bracketed) then
-            ! regula falsi; Illinois: an end kept twice counts half (it may be stale:
-            ! the neighbours move too), so the next point comes closer to it
-            if (r_prev * r_now > 0.0_wp) then
+            bracketed = br(1) >= 0.0_wp .and. br(3) >= 0.0_wp
+            if (bracketed .and. abs(br(3) - br(1)) <= solver%s%tol * max(br(1), br(3))) then
+              ! The root is within the tolerance: at a kink of the law (the end jump on
+              ! the damage envelope, g jumps there), confirmed if the last two passes
+              ! fell on either side; else the other end is stale (the neighbours moved).
+              if (r_prev * r_now < 0.0_wp) cycle     ! (the previous pass stays the record)
               if (r_now < 0.0_wp) then
-                br(4) = 0.5_wp * br(4)
+                br(3) = -1.0_wp
               else
-                br(2) = 0.5_wp * br(2)
+                br(1) = -1.0_wp
               end if
+              bracketed = .false.
             end if
-            f = br(1) - br(2) * (br(3) - br(1)) / (br(4) - br(2))
-          else if (c%coh(coh_prev, k) >= 0.0_wp .and. c%coh(coh_prev, k) /= old) then
-            slope = (r_now - r_prev) / (old - c%coh(coh_prev, k))
-            if (slope > 0.0_wp) f = min(1.0_wp, max(0.0_wp, old - r_now / slope))
-          end if
-        end associate
+            if (bracketed) then
+              ! regula falsi; Illinois: an end kept twice counts half (it may be stale:
+              ! the neighbours move too), so the next point comes closer to it
+              if (r_prev * r_now > 0.0_wp) then
+                if (r_now < 0.0_wp) then
+                  br(4) = 0.5_wp * br(4)
+                else
+                  br(2) = 0.5_wp * br(2)
+                end if
+              end if
+              f = br(1) - br(2) * (br(3) - br(1)) / (br(4) - br(2))
+            else if (c%coh(coh_prev, k) >= 0.0_wp .and. c%coh(coh_prev, k) /= old) then
+              slope = (r_now - r_prev) / (old - c%coh(coh_prev, k))
+              if (slope > 0.0_wp) f = min(1.0_wp, max(0.0_wp, old - r_now / slope))
+            end if
+          end associate
+        end if
         c%coh(coh_prev:coh_prev + 1, k) = [old, g]
         changed = .true.
         old = f
@@ -641,7 +653,11 @@ contains
           end do
         end if
         call norms(report)
-        if (solver%s%damage_in_step .and. c%with_cohesion .and. .not. diverged) call settle_damage()
+        if (solver%s%damage_in_step .and. c%with_cohesion .and. .not. diverged) then
+          ! LMGC90 (lmgc90) sets beta at every check, but only the checks that do not
+          ! converge lead to more sweeps: the bodies get the impulse of the last ones.
+          if (solver%s%damage_midpoint .or. .not. report%converged) call settle_damage()
+        end if
         if (report%converged .or. diverged) exit blocks   ! NaN/Inf: the caller's state check names it
       end do blocks
       call unpack_contacts()

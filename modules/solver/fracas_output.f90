@@ -24,7 +24,7 @@ module fracas_output
                                tk_xksid, tk_alpxx
   use fracas_scene, only: scene_t, step_report_t
   use fracas_version, only: version_string, git_commit, build_type, compiler, compiler_flags
-  use fracas_contact_laws, only: law_czm
+  use fracas_contact_laws, only: law_czm, law_iqs_clb_g0
   use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file, write_gpv_file
   use fracas_mailx, only: mailx_gauss_values
   use fracas_elements, only: el_ngauss_gpv, el_name, el_vtk_type, el_vtk_order
@@ -916,6 +916,9 @@ contains
           recs(pos)%has_geometry = .true.
           if (sc%laws(c%law(k))%kind == law_czm) then
             recs(pos)%internals = c%internals(:, k)
+          else if (sc%laws(c%law(k))%kind == law_iqs_clb_g0) then
+            recs(pos)%internals = c%internals(1:1, k)
+            recs(pos)%internal_name = 'g_ref'
           else if (c%cdm(k) == bm_mesh .or. c%anm(k) == bm_mesh) then
             recs(pos)%internals = [c%length(k)]   ! LMGC90 writes the length of contacts with meshes
           else

@@ -14,7 +14,7 @@ module fracas_scene
                           mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint
   use fracas_cracks, only: cracks_t, cracks_init, cracks_update
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
-  use fracas_contact_laws, only: law_t, law_from_input, law_czm
+  use fracas_contact_laws, only: law_t, law_from_input, law_czm, law_iqs_clb_g0, law_coupled_dof
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
   use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts, &
                              history_find_near, history_knows_pair, n_internals
@@ -111,6 +111,8 @@ contains
         end do
         if (density < 0.0_wp) call input_error(bd%src%file, bd%src%line, 23, "material '"//bd%behav// &
           "' is not defined in BULK_BEHAV.DAT")
+        if (density == 0.0_wp) call input_error(bd%src%file, bd%src%line, 23, "material '"//bd%behav// &
+          "' has density 0: a rigid body needs a mass (only meshed bodies may be massless)")
         call body_area_inertia(bd, area, polar)
         avrd(ib) = bd%avrd
         gyrd = bd%gyrd
@@ -198,7 +200,8 @@ contains
         internals = reshape([internals, rec_internals], [n_internals, size(cd)])
       end associate
     end do
-    sc%contacts%with_cohesion = any(sc%laws%kind == law_czm)
+    sc%contacts%with_cohesion = any(sc%laws%kind == law_czm .or. sc%laws%kind == law_iqs_clb_g0 .or. &
+                                    sc%laws%kind == law_coupled_dof)
     if (sc%contacts%with_cohesion) then
       call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, points, internals)
     else
@@ -213,7 +216,8 @@ contains
     ns%order = deck%run%nlgs_order
     ns%seed = deck%run%nlgs_seed
     ns%check_pass = deck%run%nlgs_check_pass
-    ns%damage_in_step = deck%run%cohesive_damage == 'implicit'
+    ns%damage_in_step = deck%run%cohesive_damage /= 'explicit'
+    ns%damage_midpoint = deck%run%cohesive_damage == 'implicit'
     ns%theta = deck%run%theta
     call nlgs_init(sc%solver, ns)
 
@@ -334,6 +338,9 @@ contains
           ! contacts made later start without cohesion.
           if (c%with_cohesion) c%internals(:, k) = [c%length(k), 0.0_wp, 0.0_wp, &
                                                     merge(1.0_wp, 0.0_wp, sc%step == 0), -99.0_wp]
+          ! IQS_CLB_g0: the gap at the first step is the reference (LMGC90), 0 later
+          if (sc%laws(c%law(k))%kind == law_iqs_clb_g0) &
+            c%internals(:, k) = [merge(max(0.0_wp, c%gap(k)), 0.0_wp, sc%step == 0), 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]
         end if
       end do
       call lap(rep%detect_seconds)

@@ -47,9 +47,9 @@ LMGC90_NAMES = {
 
 def run_control(**lmgc90):
     """RunControl from LMGC90 settings (names as in LMGC90_NAMES; None values are
-    left out). dt and nb_steps are required. Cohesive damage follows LMGC90's explicit
-    update, so that the run reproduces LMGC90's outputs."""
-    rc = RunControl(cohesive_damage="explicit")
+    left out). dt and nb_steps are required. Cohesive damage follows LMGC90's update
+    (cohesive_damage lmgc90), so that the run reproduces LMGC90's outputs."""
+    rc = RunControl(cohesive_damage="lmgc90")
     for name, value in lmgc90.items():
         if value is None:
             continue

@@ -613,7 +613,7 @@ COMMAND_KEYWORDS = {
     "nlgs_unconverged": ("warn", "fail", "stop"),
     "output_vtk_disks": ("points", "polygons"),
     "output_vtk_precision": ("single", "double"),
-    "cohesive_damage": ("implicit", "explicit"),
+    "cohesive_damage": ("implicit", "explicit", "lmgc90"),
     # meshed bodies
     "plane": ("strain", "stress"),
     "newton_tolerance": float,
