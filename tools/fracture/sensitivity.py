@@ -7,6 +7,10 @@ the energy audit, the run time. Takes about 35 min on one idle core (not in ctes
 results committed in doc/fracture.md).
 
     sensitivity.py WORK_DIR [--fracas build/release/bin/fracas] [--png OUT.png] [--reuse]
+    sensitivity.py WORK_DIR --seeds N [--sizes lc3.0_dt0.25,lc2.5_dt0.25,...] [--reuse]
+
+--seeds N: mesh statistics instead: each mesh size with N node perturbations (seeds
+1..N, gen.py's third argument), the angle's mean and spread per size (issue 17).
 """
 import argparse
 import subprocess
@@ -43,14 +47,38 @@ def measure(run_dir, p):
     return out, cracks
 
 
+def mesh_statistics(a, work):
+    """The crack angle on a.seeds meshes of each size (seeded node perturbations)."""
+    print("| lc (mm) | seeds | angles (°) | mean (°) | spread (std, °) | run time per mesh (s) |")
+    print("| --- | --- | --- | --- | --- | --- |")
+    for name in a.sizes.split(","):
+        p = gen.SENSITIVITY[name]
+        angles, walls = [], []
+        for seed in range(1, a.seeds + 1):
+            d = work / f"{name}_seed{seed}"
+            t = time.time()
+            if not a.reuse:
+                gen.build(name, seed).write(d)
+                subprocess.run([a.fracas, "-q", "--overwrite", str(d)], check=True)
+            walls.append(time.time() - t)
+            angles.append(measure(d, p)[0]["angle"])
+        ang = np.array(angles)
+        print(f"| {p['lc'] * 1e3:g} | {a.seeds} | {', '.join(f'{x:.1f}' for x in ang)} | {np.nanmean(ang):.1f} | "
+              f"{np.nanstd(ang):.1f} | {np.mean(walls):.0f} |", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("work")
     ap.add_argument("--fracas", default=str(ROOT / "build" / "release" / "bin" / "fracas"))
     ap.add_argument("--png", default=None)
     ap.add_argument("--reuse", action="store_true", help="measure the runs already in WORK_DIR")
+    ap.add_argument("--seeds", type=int, default=0, help="mesh statistics: N meshes per size")
+    ap.add_argument("--sizes", default="lc3.0_dt0.25,lc2.5_dt0.25,lc2.0_dt0.25")
     a = ap.parse_args()
     work = Path(a.work)
+    if a.seeds:
+        return mesh_statistics(a, work)
     rows, paths = [], {}
     for name, p in gen.SENSITIVITY.items():
         d = work / name

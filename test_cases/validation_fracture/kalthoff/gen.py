@@ -7,7 +7,7 @@ RISE-long half-cosine start. Plane strain. gmsh T3 mesh, interior nodes perturbe
 (seeded), exploded; MAL_CZM on every interface (opening strength SMAX, sliding SHEAR x; C h / E = CH_E); the
 notch lips uncohesive.
 
-    gen.py OUT_DIR [quick|full]
+    gen.py OUT_DIR [quick|full|<sensitivity variant>] [SEED]
 """
 import sys
 from pathlib import Path
@@ -47,11 +47,12 @@ def params(variant):
     return VARIANTS[variant] if variant in VARIANTS else SENSITIVITY[variant]
 
 
-def build(variant="quick"):
+def build(variant="quick", seed=1):
+    """The deck of a variant; seed: the node perturbation's (another mesh of that size)."""
     from fracas_tools import Case
     from fracas_tools.mesh import mesh_geo
     p = params(variant)
-    mesh = perturb_nodes(mesh_geo(HERE / "plate.geo", size_factor=p["lc"] / 1.0e-3), PERTURB)
+    mesh = perturb_nodes(mesh_geo(HERE / "plate.geo", size_factor=p["lc"] / 1.0e-3), PERTURB, seed=seed)
     case = Case(gravity=(0.0, 0.0))
     case.add_material("STEEL", RHO, "ELAS", young=E, poisson=NU)
     parts = case.add_exploded_mesh(mesh, "STEEL", cracks=["notch"])
@@ -80,5 +81,5 @@ def build(variant="quick"):
 if __name__ == "__main__":
     out = Path(sys.argv[1]) if len(sys.argv) > 1 else HERE
     variant = sys.argv[2] if len(sys.argv) > 2 else "quick"
-    build(variant).write(out)
+    build(variant, int(sys.argv[3]) if len(sys.argv) > 3 else 1).write(out)
     print(f"wrote {out / 'DATBOX'} ({variant})")
