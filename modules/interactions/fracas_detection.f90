@@ -12,6 +12,8 @@ module fracas_detection
                                tk_clxxx, tk_alpxx, cl_point
   use fracas_mesh_pairs, only: point_polyline, point_segment_distance
   use fracas_contacts, only: contacts_t, contacts_reserve
+  use fracas_rbdy2_side, only: rigid2_levers, rigid2_point_velocity
+  use fracas_mailx_side, only: mesh2_point_velocity
   use fracas_dkdkx, only: dkdkx_geometry
   use fracas_dkjcx, only: dkjcx_geometry
   use fracas_dkkdx, only: dkkdx_geometry
@@ -717,11 +719,11 @@ contains
       real(wp) :: v(2), r(2)
       integer :: b
       if (t%model(k) == bm_mesh) then
-        v = mwt(first) * vm(:, mnode(first)) + mwt(first + 1) * vm(:, mnode(first + 1))
+        v = mesh2_point_velocity(vm(:, mnode(first)), vm(:, mnode(first + 1)), mwt(first), mwt(first + 1))
       else
         b = t%body(k)
         r = point - q(1:2, b)
-        v = vq(1:2, b) + vq(3, b) * [-r(2), r(1)]
+        v = rigid2_point_velocity(vq(:, b), r(1), r(2))
       end if
     end function point_velocity
 
@@ -742,7 +744,6 @@ contains
       integer, intent(in) :: kcd, kan, cdver, anseg
       integer, intent(inout), optional :: slot
       integer :: k, b1, b2
-      real(wp) :: tang(2), rcd(2), ran(2)
       if (gap > alert) then
         if (.not. present(h)) return
         if (gap + h * min(0.0_wp, approach(kcd, kan)) > alert) return
@@ -773,19 +774,10 @@ contains
       c%point(:, k) = point
       c%gap(k) = gap
       c%length(k) = len
-      tang = [normal(2), -normal(1)]
       ! Rigid sides: lever arms from the body node to the contact point.
       c%lever(:, k) = 0.0_wp
-      if (c%cdm(k) == bm_rigid) then
-        rcd = point - q(1:2, b1)
-        c%lever(1, k) = cross(rcd, tang)
-        c%lever(2, k) = cross(rcd, normal)
-      end if
-      if (c%anm(k) == bm_rigid) then
-        ran = point - q(1:2, b2)
-        c%lever(3, k) = cross(ran, tang)
-        c%lever(4, k) = cross(ran, normal)
-      end if
+      if (c%cdm(k) == bm_rigid) c%lever(1:2, k) = rigid2_levers(point - q(1:2, b1), normal(1), normal(2))
+      if (c%anm(k) == bm_rigid) c%lever(3:4, k) = rigid2_levers(point - q(1:2, b2), normal(1), normal(2))
       if (c%with_mesh) then
         c%mnode(:, k) = mnode
         c%mwt(:, k) = mwt
@@ -842,9 +834,4 @@ contains
       v(2, i) = c(2) + sn * sx(i) * ax1 + cs * sy(i) * ax2
     end do
   end function wall_rectangle
-
-  pure real(wp) function cross(a, b)
-    real(wp), intent(in) :: a(2), b(2)
-    cross = a(1) * b(2) - a(2) * b(1)
-  end function cross
 end module fracas_detection

@@ -18,6 +18,10 @@ module fracas_nlgs
                           mailx_contact_dofs, &
                           mailx_velocity_from_impulses
   use fracas_contacts, only: contacts_t
+  use fracas_frame_2d, only: frame2_local, frame2_global
+  use fracas_rbdy2_side, only: rigid2_add_delassus, rigid2_add_spin, rigid2_add_impulse, rigid2_moment, &
+                               rigid2_side_impulse
+  use fracas_mailx_side, only: mesh2_point_velocity, mesh2_add_g, mesh2_add_hg, mesh2_add_impulse, mesh2_add_node
   use fracas_contact_laws, only: law_t, law_local_problem, law_czm, cohesive_elimination, coh_size, coh_law, &
                                  coh_factor, coh_released, coh_u0t, coh_u0n, coh_h, coh_prev, coh_uend
   use fracas_czm, only: czm_t, czm_beta_update, czm_stored_energy, czm_step_dissipation, czm_step_factor, &
@@ -112,24 +116,24 @@ contains
     type(contacts_t), intent(in) :: c
     integer, intent(in) :: k
     real(wp), intent(in) :: v(:, :), vm(:, :)
-    real(wp) :: u(2), dv(2), rot_cd(2), rot_an(2)
-    integer :: a, b
-    a = c%cdb(k); b = c%anb(k)
-    rot_cd = 0.0_wp; rot_an = 0.0_wp
-    if (c%cdm(k) == bm_rigid) then
-      dv = v(1:2, a)
-      rot_cd = [v(3, a) * c%lever(1, k), v(3, a) * c%lever(2, k)]
-    else
-      dv = c%mwt(1, k) * vm(:, c%mnode(1, k)) + c%mwt(2, k) * vm(:, c%mnode(2, k))
-    end if
-    if (c%anm(k) == bm_rigid) then
-      dv = dv - v(1:2, b)
-      rot_an = [v(3, b) * c%lever(3, k), v(3, b) * c%lever(4, k)]
-    else
-      dv = dv - (c%mwt(3, k) * vm(:, c%mnode(3, k)) + c%mwt(4, k) * vm(:, c%mnode(4, k)))
-    end if
-    u(1) = dv(1) * c%normal(2, k) - dv(2) * c%normal(1, k) + rot_cd(1) - rot_an(1)
-    u(2) = dv(1) * c%normal(1, k) + dv(2) * c%normal(2, k) + rot_cd(2) - rot_an(2)
+    real(wp) :: u(2), dv(2)
+    dv = side_point_velocity(1) - side_point_velocity(2)
+    call frame2_local(c%normal(1, k), c%normal(2, k), dv(1), dv(2), u(1), u(2))
+    if (c%cdm(k) == bm_rigid) call rigid2_add_spin(1.0_wp, v(3, c%cdb(k)), c%lever(1, k), c%lever(2, k), u(1), u(2))
+    if (c%anm(k) == bm_rigid) call rigid2_add_spin(-1.0_wp, v(3, c%anb(k)), c%lever(3, k), c%lever(4, k), u(1), u(2))
+  contains
+    !> The translational velocity of side s's point (the rotation of a rigid side is added in the frame).
+    pure function side_point_velocity(s) result(p)
+      integer, intent(in) :: s
+      real(wp) :: p(2)
+      integer :: i
+      if (side_model(c, k, s) == bm_rigid) then
+        p = v(1:2, side_body(c, k, s))
+      else
+        i = 2 * s - 1
+        p = mesh2_point_velocity(vm(:, c%mnode(i, k)), vm(:, c%mnode(i + 1, k)), c%mwt(i, k), c%mwt(i + 1, k))
+      end if
+    end function side_point_velocity
   end function contact_velocity
 
   !> Component i (1: t, 2: n) of the cohesive impulse a + K u~ of contact k at
@@ -207,7 +211,7 @@ contains
     type(law_t), intent(in) :: laws(:)
     real(wp), intent(in) :: h
     integer :: k, a, o
-    real(wp) :: ht(3), hn(3), gt(3), gn(3), weff(4), coh(coh_size), internals(5)
+    real(wp) :: weff(4), coh(coh_size), internals(5)
     logical :: active, cohesive, solvable
     if (c%with_mesh) call mesh_blocks(solver, c, m)
     if (.not. allocated(solver%cz)) solver%cz = laws%czm
@@ -215,20 +219,10 @@ contains
     do k = 1, c%n
       a = c%cdb(k); o = c%anb(k)
       c%w(:, k) = 0.0_wp
-      if (c%cdm(k) == bm_rigid) then
-        ht = [c%normal(2, k), -c%normal(1, k), c%lever(1, k)]
-        hn = [c%normal(1, k), c%normal(2, k), c%lever(2, k)]
-        c%w(1, k) = sum(b%inv_mass(:, a) * ht * ht)
-        c%w(2, k) = sum(b%inv_mass(:, a) * ht * hn)
-        c%w(4, k) = sum(b%inv_mass(:, a) * hn * hn)
-      end if
-      if (c%anm(k) == bm_rigid) then
-        gt = [c%normal(2, k), -c%normal(1, k), c%lever(3, k)]
-        gn = [c%normal(1, k), c%normal(2, k), c%lever(4, k)]
-        c%w(1, k) = c%w(1, k) + sum(b%inv_mass(:, o) * gt * gt)
-        c%w(2, k) = c%w(2, k) + sum(b%inv_mass(:, o) * gt * gn)
-        c%w(4, k) = c%w(4, k) + sum(b%inv_mass(:, o) * gn * gn)
-      end if
+      if (c%cdm(k) == bm_rigid) call rigid2_add_delassus(b%inv_mass(:, a), c%normal(1, k), c%normal(2, k), &
+                                                         c%lever(1, k), c%lever(2, k), c%w(:, k))
+      if (c%anm(k) == bm_rigid) call rigid2_add_delassus(b%inv_mass(:, o), c%normal(1, k), c%normal(2, k), &
+                                                         c%lever(3, k), c%lever(4, k), c%w(:, k))
       c%w(3, k) = c%w(2, k)
       if (c%cdm(k) == bm_mesh .or. c%anm(k) == bm_mesh) call add_mesh_block(k)
       ! A nearly rigid tangential direction would make the stick test ill-posed.
@@ -258,7 +252,7 @@ contains
     !> same body (both, for a contact of a body with itself).
     subroutine add_mesh_block(k)
       integer, intent(in) :: k
-      integer :: s, s2, i, j, mb, g0, sl
+      integer :: s, s2, i, mb, g0, sl
       real(wp) :: t(2), nrm(2), sgn, ht_g(2), hn_g(2), wgt
       nrm = c%normal(:, k)
       t = [nrm(2), -nrm(1)]
@@ -274,12 +268,8 @@ contains
           do i = 2 * s - 1, 2 * s
             wgt = sgn * c%mwt(i, k)
             sl = 2 * solver%aslot(c%mnode(i, k)) - 1
-            do j = 1, 2
-              ht_g(j) = ht_g(j) + wgt * (t(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
-                                         t(2) * solver%gmat(g0 + 2 * sl + j))
-              hn_g(j) = hn_g(j) + wgt * (nrm(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
-                                         nrm(2) * solver%gmat(g0 + 2 * sl + j))
-            end do
+            call mesh2_add_hg(wgt, t, nrm, solver%gmat(g0 + 2 * sl - 1:g0 + 2 * sl), &
+                              solver%gmat(g0 + 2 * sl + 1:g0 + 2 * sl + 2), ht_g, hn_g)
           end do
           c%w(1, k) = c%w(1, k) + ht_g(1)
           c%w(2, k) = c%w(2, k) + ht_g(2)
@@ -410,10 +400,8 @@ contains
           ! rows of the active nodes; (G_t, G_n) interleaved, as the mesh kernel reads them
           do j = 1, solver%nact(b)
             associate (r1 => 2 * m%cslot(solver%anodes(solver%abase(b) + j)) - 1, q => g0 + 4 * j - 4)
-              solver%gmat(q + 1) = solver%gmat(q + 1) + wgt * (t(1) * cols(r1, 1) + t(2) * cols(r1, 2))
-              solver%gmat(q + 2) = solver%gmat(q + 2) + wgt * (nrm(1) * cols(r1, 1) + nrm(2) * cols(r1, 2))
-              solver%gmat(q + 3) = solver%gmat(q + 3) + wgt * (t(1) * cols(r1 + 1, 1) + t(2) * cols(r1 + 1, 2))
-              solver%gmat(q + 4) = solver%gmat(q + 4) + wgt * (nrm(1) * cols(r1 + 1, 1) + nrm(2) * cols(r1 + 1, 2))
+              call mesh2_add_g(wgt, t, nrm, cols(r1, 1), cols(r1, 2), cols(r1 + 1, 1), cols(r1 + 1, 2), &
+                               solver%gmat(q + 1:q + 4))
             end associate
           end do
         end do
@@ -644,14 +632,13 @@ contains
       integer, intent(in) :: k
       real(wp), intent(in) :: dt, dn
       integer :: a, o
-      real(wp) :: p(2)
+      real(wp) :: px, py
       a = c%cdb(k); o = c%anb(k)
-      p(1) = dt * c%normal(2, k) + dn * c%normal(1, k)
-      p(2) = -dt * c%normal(1, k) + dn * c%normal(2, k)
-      b%v(1:2, a) = b%v(1:2, a) + b%inv_mass(1:2, a) * p
-      b%v(3, a) = b%v(3, a) + b%inv_mass(3, a) * (dt * c%lever(1, k) + dn * c%lever(2, k))
-      b%v(1:2, o) = b%v(1:2, o) - b%inv_mass(1:2, o) * p
-      b%v(3, o) = b%v(3, o) - b%inv_mass(3, o) * (dt * c%lever(3, k) + dn * c%lever(4, k))
+      call frame2_global(c%normal(1, k), c%normal(2, k), dt, dn, px, py)
+      call rigid2_add_impulse(b%v(:, a), b%inv_mass(:, a), 1.0_wp, px, py, &
+                              rigid2_moment(dt, dn, c%lever(1, k), c%lever(2, k)))
+      call rigid2_add_impulse(b%v(:, o), b%inv_mass(:, o), -1.0_wp, px, py, &
+                              rigid2_moment(dt, dn, c%lever(3, k), c%lever(4, k)))
     end subroutine inject
 
     !> Coloured order: the active contacts in stored order, cut in blocks of
@@ -820,7 +807,7 @@ contains
     !> that active contacts touch, then the warm-start impulses of the contacts
     !> with a meshed side, on both their sides.
     subroutine pack_meshes()
-      integer :: k, sd, bm, total, j, i, mb, g0, v0
+      integer :: k, sd, bm, total, j
       if (allocated(solver%moff)) then
         if (size(solver%moff) /= m%n) deallocate (solver%moff)
       end if
@@ -866,13 +853,8 @@ contains
           if (side_model(c, k, sd) == bm_rigid) then
             call inject_rigid_side(k, sd, c%r(1, k), c%r(2, k))
           else
-            mb = solver%gm(sd, k)
-            g0 = solver%goff(sd, k)
-            v0 = solver%moff(side_body(c, k, sd))
-            do i = 1, mb
-              solver%mv(v0 + i) = solver%mv(v0 + i) + solver%gmat(g0 + 2 * i - 1) * c%r(1, k) + &
-                                  solver%gmat(g0 + 2 * i) * c%r(2, k)
-            end do
+            call mesh2_add_impulse(solver%mv, solver%gmat, solver%goff(sd, k), solver%moff(side_body(c, k, sd)), &
+                                   solver%gm(sd, k), c%r(1, k), c%r(2, k))
           end if
         end do
       end do
@@ -882,15 +864,8 @@ contains
     subroutine inject_rigid_side(k, sd, dt, dn)
       integer, intent(in) :: k, sd
       real(wp), intent(in) :: dt, dn
-      integer :: a
-      real(wp) :: p(2), sgn
-      a = solver%bslot(side_body(c, k, sd))
-      sgn = merge(1.0_wp, -1.0_wp, sd == 1)
-      p(1) = dt * c%normal(2, k) + dn * c%normal(1, k)
-      p(2) = -dt * c%normal(1, k) + dn * c%normal(2, k)
-      solver%bv(1:2, a) = solver%bv(1:2, a) + sgn * solver%bv(4:5, a) * p
-      solver%bv(3, a) = solver%bv(3, a) + sgn * solver%bv(6, a) * &
-                        (dt * c%lever(2 * sd - 1, k) + dn * c%lever(2 * sd, k))
+      call rigid2_side_impulse(solver%bv(:, solver%bslot(side_body(c, k, sd))), merge(1.0_wp, -1.0_wp, sd == 1), &
+                               c%normal(1, k), c%normal(2, k), c%lever(2 * sd - 1:2 * sd, k), dt, dn)
     end subroutine inject_rigid_side
 
     !> Velocities of the meshed bodies from the contact impulses on their nodes.
@@ -902,13 +877,12 @@ contains
       imp = 0.0_wp
       do k = 1, n
         if (.not. c%active(k)) cycle
-        p(1) = c%r(1, k) * c%normal(2, k) + c%r(2, k) * c%normal(1, k)
-        p(2) = -c%r(1, k) * c%normal(1, k) + c%r(2, k) * c%normal(2, k)
+        call frame2_global(c%normal(1, k), c%normal(2, k), c%r(1, k), c%r(2, k), p(1), p(2))
         do sd = 1, 2
           if (side_model(c, k, sd) /= bm_mesh) cycle
           sgn = merge(1.0_wp, -1.0_wp, sd == 1)
           do i = 2 * sd - 1, 2 * sd
-            imp(:, c%mnode(i, k)) = imp(:, c%mnode(i, k)) + sgn * c%mwt(i, k) * p
+            call mesh2_add_node(sgn * c%mwt(i, k), p(1), p(2), imp(1, c%mnode(i, k)), imp(2, c%mnode(i, k)))
           end do
         end do
       end do

@@ -10,6 +10,8 @@ module fracas_scene
   use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
                           rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
   use fracas_drives, only: drive_value
+  use fracas_frame_2d, only: frame2_global
+  use fracas_rbdy2_side, only: rigid2_add_impulse, rigid2_moment
   use fracas_mailx, only: mailx_t, mailx_build, mailx_begin_step, mailx_detection_coor, mailx_converged, &
                           mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint
   use fracas_cracks, only: cracks_t, cracks_init, cracks_update
@@ -447,24 +449,19 @@ contains
   subroutine scene_body_impulses(sc, imp)
     type(scene_t), intent(in) :: sc
     real(wp), allocatable, intent(out) :: imp(:, :)
-    integer :: k, a, o
-    real(wp) :: p(2), rt, rn
+    real(wp), parameter :: one(3) = 1.0_wp
+    integer :: k
+    real(wp) :: px, py, rt, rn
     allocate (imp(3, sc%bodies%n))
     imp = 0.0_wp
     associate (c => sc%contacts)
       do k = 1, c%n
-        a = c%cdb(k); o = c%anb(k)
         rt = c%r(1, k); rn = c%r(2, k)
-        p(1) = rt * c%normal(2, k) + rn * c%normal(1, k)
-        p(2) = -rt * c%normal(1, k) + rn * c%normal(2, k)
-        if (c%cdm(k) == bm_rigid) then
-          imp(1:2, a) = imp(1:2, a) + p
-          imp(3, a) = imp(3, a) + rt * c%lever(1, k) + rn * c%lever(2, k)
-        end if
-        if (c%anm(k) == bm_rigid) then
-          imp(1:2, o) = imp(1:2, o) - p
-          imp(3, o) = imp(3, o) - (rt * c%lever(3, k) + rn * c%lever(4, k))
-        end if
+        call frame2_global(c%normal(1, k), c%normal(2, k), rt, rn, px, py)
+        if (c%cdm(k) == bm_rigid) call rigid2_add_impulse(imp(:, c%cdb(k)), one, 1.0_wp, px, py, &
+                                                          rigid2_moment(rt, rn, c%lever(1, k), c%lever(2, k)))
+        if (c%anm(k) == bm_rigid) call rigid2_add_impulse(imp(:, c%anb(k)), one, -1.0_wp, px, py, &
+                                                          rigid2_moment(rt, rn, c%lever(3, k), c%lever(4, k)))
       end do
     end associate
   end subroutine scene_body_impulses
