@@ -3,7 +3,8 @@
 program fracas
   use, intrinsic :: iso_fortran_env, only: output_unit, int64
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged, set_error_context, last_error
+  use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged, set_error_context, last_error, &
+                           status_t
   use fracas_strings, only: itoa, rtoa
   use fracas_datbox_text, only: parse_int
   use fracas_deck, only: deck_t
@@ -26,6 +27,7 @@ program fracas
   type(scene_t) :: sc
   type(output_t) :: out
   type(step_report_t) :: rep
+  type(status_t) :: status
   integer :: i, nargs, nsteps, istep, first_step, every, unconverged, late, hdf5_every, first_unconverged
   integer :: restart_step, vtk_frames, outbox_writes
   integer(int64) :: total_sweeps
@@ -151,7 +153,8 @@ contains
     call clocks(t0, cpu0)
     do istep = first_step, nsteps
       call set_error_context(step='step '//itoa(istep)//' (t='//rtoa(sc%time + sc%h)//')')
-      call scene_step(sc, rep)
+      call scene_step(sc, rep, status)
+      if (.not. status%ok) call fatal(status%message)   ! a body whose matrix does not factorize
       fault = scene_fault(sc)
       if (len(fault) > 0) call fatal('step '//itoa(sc%step)//' (t='//rtoa(sc%time)//'): '//fault// &
         '. The run stops; '//out_dir//'/OUTBOX/fracas.h5 holds the steps before it and is marked incomplete')

@@ -5,7 +5,7 @@
 module fracas_scene
   use fracas_kinds, only: wp, i8
   use fracas_deck, only: deck_t, body_input_t
-  use fracas_errors, only: input_error
+  use fracas_errors, only: input_error, status_t, failed
   use fracas_ids, only: inter_id, status_id, bm_rigid, bm_mesh
   use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
                           rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
@@ -267,10 +267,12 @@ contains
     end do
   end subroutine polygons_to_centroid
 
-  !> Advance the scene by one time step.
-  subroutine scene_step(sc, rep)
+  !> Advance the scene by one time step. A meshed body whose iteration matrix
+  !> does not factorize: status (the scene is then left mid-step), or the run stops.
+  subroutine scene_step(sc, rep, status)
     type(scene_t), intent(inout) :: sc
     type(step_report_t), intent(out) :: rep
+    type(status_t), intent(out), optional :: status
     integer :: k, pos, nover, checks, checks_left
     logical :: pair_known, swapped
     integer(i8) :: t0, t1, t2, rate
@@ -282,7 +284,8 @@ contains
       call rbdy2_begin_step(b, sc%time, sc%h, sc%theta)
       call rbdy2_detection_coor(b, sc%h, sc%theta, sc%q)
       if (m%n > 0) then
-        call mailx_begin_step(m, sc%time)
+        call mailx_begin_step(m, sc%time, status)
+        if (failed(status)) return
         call mailx_detection_coor(m, sc%xn)
       end if
       call lap(rep%bodies_seconds)
@@ -351,7 +354,7 @@ contains
       ! every iteration, up to newton_max_iterations + 1 times).
       checks = sc%solver%s%max_checks
       do
-        if (mailx_converged(m, sc%newton_tolerance, sc%newton_max_iterations)) exit
+        if (mailx_converged(m, sc%newton_tolerance, sc%newton_max_iterations, status)) exit
         checks_left = checks - (rep%nlgs%sweeps + sc%solver%s%sweeps_per_check - 1) / sc%solver%s%sweeps_per_check
         if (checks_left < 1) then
           rep%nlgs%converged = .false.
@@ -370,6 +373,7 @@ contains
         rep%nlgs%converged = newton_rep%converged
       end do
       sc%solver%s%max_checks = checks
+      if (failed(status)) return
       call lap(rep%bodies_seconds)
       rep%newton_iterations = m%iterations
       rep%newton_converged = m%newton_converged

@@ -14,7 +14,7 @@
 module fracas_sdl
   use, intrinsic :: iso_fortran_env, only: int64
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, warn
+  use fracas_errors, only: fatal, warn, status_t, raise
   use fracas_random, only: rng_t, rng_seed, rng_permute
   use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
   use fracas_local_solver, only: coulomb_2d_inv, inverse_block, natural_map_2d, coulomb_3d, inverse_block_3d, &
@@ -295,12 +295,15 @@ contains
   end function sdl_history_points
 
   !> Solve from the warm start r (dim, nc); r is the last iterate on return.
-  subroutine sdl_solve(p, s, r, rep, hist)
+  !> An iteration that diverges (NaN or Inf in LMGC90's norms): status, or the
+  !> run stops.
+  subroutine sdl_solve(p, s, r, rep, hist, status)
     type(sdl_problem_t), intent(in) :: p
     type(sdl_settings_t), intent(in) :: s
     real(wp), intent(inout) :: r(:, :)
     type(sdl_report_t), intent(out) :: rep
     type(sdl_history_t), intent(inout), optional :: hist
+    type(status_t), intent(out), optional :: status
     integer, allocatable :: order(:)
     type(rng_t) :: rng
     integer :: n, k, ih, spc, nfail
@@ -308,7 +311,7 @@ contains
     type(aa_t) :: aa
     real(wp), allocatable :: xprev(:, :)
     real(wp) :: tol_light, fsum, sums(6), maxes(2), e_est, ea, ep, eo
-    logical :: check, est, lmgc, conv, have_exact
+    logical :: check, est, lmgc, conv, have_exact, finite
     n = p%nc
     spc = max(1, s%sweeps_per_check)
     allocate (order(n))
@@ -375,7 +378,13 @@ contains
       if (check) then
         ! no criterion at all (err_tol = 0, check none): run max_sweeps
         conv = lmgc .or. s%err_tol > 0.0_wp
-        if (lmgc) conv = lmgc_converged(p, s, sums, maxes, rep)
+        if (lmgc) then
+          conv = lmgc_converged(p, s, sums, maxes, rep, finite)
+          if (.not. finite) then
+            call raise(status, 'stored-Delassus NLGS diverged (NaN or Inf in the reactions)')
+            return
+          end if
+        end if
         if (est) then
           e_est = sqrt(fsum) / qnorm(p)
           if (s%accel > 0) call aa_watch(aa, e_est, rep%sweeps)
@@ -603,15 +612,17 @@ contains
   end subroutine project_all
 
   !> LMGC90's normalised norms from the sums of a check sweep (the scene NLGS's
-  !> procedure; the velocity scale is the RMS of q over the contacts).
-  logical function lmgc_converged(p, s, sums, maxes, rep) result(conv)
+  !> procedure; the velocity scale is the RMS of q over the contacts). finite:
+  !> the sums hold no NaN or Inf.
+  logical function lmgc_converged(p, s, sums, maxes, rep, finite) result(conv)
     type(sdl_problem_t), intent(in) :: p
     type(sdl_settings_t), intent(in) :: s
     real(wp), intent(in) :: sums(6), maxes(2)
     type(sdl_report_t), intent(inout) :: rep
+    logical, intent(out) :: finite
     type(lmgc_norms_t) :: nrm
     call lmgc_norms(s%check, s%tol, sums, maxes, p%norm_q / sqrt(real(max(p%nc, 1), wp)), nrm, conv)
-    if (.not. nrm%finite) call fatal('stored-Delassus NLGS diverged (NaN or Inf in the reactions)')
+    finite = nrm%finite
     rep%quad_dv = nrm%quad_dv; rep%maxm_dv = nrm%maxm_dv; rep%quad_dvr = nrm%quad_dvr
     rep%maxm_dvr = nrm%maxm_dvr; rep%mean_dvor = nrm%mean_dvor
   end function lmgc_converged
