@@ -4,6 +4,7 @@ module fracas_local_solver
   use fracas_kinds, only: wp
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw
   use fracas_contact_laws, only: coh_factor, coh_uend
+  use fracas_lmgc_norms, only: lmgc_add_sums
   implicit none
   private
   public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d_packed, gs_sweep_mesh
@@ -233,7 +234,7 @@ contains
     integer, intent(inout) :: status
     real(wp), intent(inout) :: sums(6), maxes(2)
     integer :: st
-    real(wp) :: wtt, wtn, wnt, wnn, uft, ufn, dut, dun, du2, rbt, rbn, rb2
+    real(wp) :: wtt, wtn, wnt, wnn, uft, ufn
     wtt = cr(7); wtn = cr(8); wnt = cr(9); wnn = cr(10)
     uend = 0.0_wp
     uft = ut - (wtt * rt0 + wtn * rn0) + cr(17)
@@ -245,24 +246,7 @@ contains
     end if
     if (check) then
       status = st
-      ! du = W (r_old - r_new), rbar = mean reaction (LMGC90's check quantities)
-      dut = wtt * (rt0 - rt) + wtn * (rn0 - rn)
-      dun = wnt * (rt0 - rt) + wnn * (rn0 - rn)
-      rbt = 0.5_wp * (rt0 + rt); rbn = 0.5_wp * (rn0 + rn)
-      if (rbt /= 0.0_wp .or. rbn /= 0.0_wp) then
-        du2 = dut**2 + dun**2
-        rb2 = rbt**2 + rbn**2
-        sums(1) = sums(1) + du2
-        sums(2) = sums(2) + du2 * rb2
-        sums(3) = sums(3) + rbt * dut + rbn * dun
-        sums(4) = sums(4) + 0.5_wp * ((wtt * rt0 + wtn * rn0) * rt0 + (wnt * rt0 + wnn * rn0) * rn0 + &
-                                      (wtt * rt + wtn * rn) * rt + (wnt * rt + wnn * rn) * rn)
-        sums(5) = sums(5) + 0.5_wp * ((wtt * rt0 + wtn * rn0)**2 + (wnt * rt0 + wnn * rn0)**2 + &
-                                      (wtt * rt + wtn * rn)**2 + (wnt * rt + wnn * rn)**2)
-        sums(6) = sums(6) + 1.0_wp
-        maxes(1) = max(maxes(1), du2)
-        maxes(2) = max(maxes(2), du2 * rb2)
-      end if
+      call lmgc_add_sums(2, [wtt, wnt, wtn, wnn], [rt0, rn0], [rt, rn], sums, maxes)
     end if
     if (relax /= 1.0_wp) then
       rt = relax * rt + (1.0_wp - relax) * rt0
