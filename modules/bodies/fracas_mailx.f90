@@ -206,13 +206,15 @@ contains
     end do
     m%any_nonlinear = any(m%nonlinear)
     ! Drives on mesh nodes
-    allocate (m%drives(0))
+    allocate (m%drives(count(deck%driven%model == 'MAILx')))
+    j = 0
     do k = 1, size(deck%driven)
       associate (d => deck%driven(k))
         if (d%model /= 'MAILx') cycle
         node = mesh_node(d%body, d%node, d%src%file, d%src%line)
         if (d%dof < 1 .or. d%dof > 2) call input_error(d%src%file, d%src%line, 9, 'a mesh node has dofs 1 and 2')
-        m%drives = [m%drives, drive_from_input(d, node)]
+        j = j + 1
+        m%drives(j) = drive_from_input(d, node)
         if (d%kind == 'vlocy') m%driven(d%dof, node) = .true.
       end associate
     end do

@@ -9,7 +9,7 @@ module fracas_rbdy2
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   implicit none
   private
-  public :: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
+  public :: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_begin_step, &
             rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
 
 
@@ -62,21 +62,26 @@ contains
     allocate (b%drives(0))
   end subroutine rbdy2_init
 
-  !> Add a driven dof read from DRV_DOF.DAT (body serial number = index).
-  subroutine rbdy2_add_drive(b, inp)
+  !> The driven dofs read from DRV_DOF.DAT (body serial number = index), all at once.
+  subroutine rbdy2_add_drives(b, inputs)
     type(rbdy2_t), intent(inout) :: b
-    type(driven_dof_input_t), intent(in) :: inp
-    type(drive_t) :: d
-    if (inp%body < 1 .or. inp%body > b%n) &
-      call input_error(inp%src%file, inp%src%line, 9, 'driven body number out of range')
-    d = drive_from_input(inp, inp%body)
-    b%drives = [b%drives, d]
-    if (d%is_velocity) then
-      b%driven(d%dof, d%body) = .true.
-      b%inv_mass(d%dof, d%body) = 0.0_wp
-      b%clamped(d%body) = all(b%driven(:, d%body))
-    end if
-  end subroutine rbdy2_add_drive
+    type(driven_dof_input_t), intent(in) :: inputs(:)
+    integer :: k
+    deallocate (b%drives)
+    allocate (b%drives(size(inputs)))
+    do k = 1, size(inputs)
+      associate (inp => inputs(k), d => b%drives(k))
+        if (inp%body < 1 .or. inp%body > b%n) &
+          call input_error(inp%src%file, inp%src%line, 9, 'driven body number out of range')
+        d = drive_from_input(inp, inp%body)
+        if (d%is_velocity) then
+          b%driven(d%dof, d%body) = .true.
+          b%inv_mass(d%dof, d%body) = 0.0_wp
+          b%clamped(d%body) = all(b%driven(:, d%body))
+        end if
+      end associate
+    end do
+  end subroutine rbdy2_add_drives
 
 
   !> Start of a step [t, t+h]: external forces (gravity, theta-averaged driven

@@ -28,6 +28,7 @@ module fracas_nlgs
                         czm_beta_power
   use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
   use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
+  use fracas_grow, only: grow
   implicit none
   private
   public :: nlgs_settings_t, nlgs_report_t, nlgs_t, nlgs_init, nlgs_prepare, nlgs_solve, &
@@ -315,13 +316,9 @@ contains
     call mailx_require_compliance(m, nodes(1:nnod))
     ! Active nodes per body (see nlgs_t), those of the last call cleared first.
     call clear_active(solver)
-    if (allocated(solver%aslot)) then
-      if (size(solver%aslot) /= m%nnodes) deallocate (solver%aslot, solver%nact, solver%abase)
-    end if
-    if (.not. allocated(solver%aslot)) then
-      allocate (solver%aslot(m%nnodes), solver%nact(m%n), solver%abase(m%n))
-      solver%aslot = 0
-    end if
+    call grow(solver%aslot, m%nnodes, fill=0)
+    call grow(solver%nact, m%n)
+    call grow(solver%abase, m%n)
     solver%nact = 0
     do k = 1, nnod
       b = m%node_body(nodes(k))
@@ -337,10 +334,7 @@ contains
       solver%abase(b) = na
       na = na + solver%nact(b)
     end do
-    if (allocated(solver%anodes)) then
-      if (size(solver%anodes) < na) deallocate (solver%anodes)
-    end if
-    if (.not. allocated(solver%anodes)) allocate (solver%anodes(max(na, 16)))
+    call grow(solver%anodes, na)
     solver%nact = 0
     do k = 1, nnod
       node = nodes(k)
@@ -359,10 +353,8 @@ contains
         solver%aslot(node) = solver%nact(b)
       end if
     end do
-    if (allocated(solver%goff)) then
-      if (size(solver%goff, 2) < c%n) deallocate (solver%goff, solver%gm)
-    end if
-    if (.not. allocated(solver%goff)) allocate (solver%goff(2, max(c%n, 16)), solver%gm(2, max(c%n, 16)))
+    call grow(solver%goff, 2, c%n)
+    call grow(solver%gm, 2, c%n)
     total = 0
     do k = 1, c%n
       do s = 1, 2
@@ -374,10 +366,7 @@ contains
         total = total + 2 * solver%gm(s, k)
       end do
     end do
-    if (allocated(solver%gmat)) then
-      if (size(solver%gmat) < total) deallocate (solver%gmat)
-    end if
-    if (.not. allocated(solver%gmat)) allocate (solver%gmat(max(total, 16)))
+    call grow(solver%gmat, total)
     do k = 1, c%n
       nrm = c%normal(:, k)
       t = [nrm(2), -nrm(1)]
@@ -516,22 +505,17 @@ contains
     n = c%n
     diverged = .false.
     report%sweeps = 0
-    if (allocated(solver%order)) then
-      if (size(solver%order) < n) deallocate (solver%order, solver%qfree, solver%pidx, solver%pc, solver%pb, &
-                                              solver%pcoh, solver%pr, solver%pst)
-    end if
-    if (.not. allocated(solver%order)) then
-      k = max(n, 16)
-      allocate (solver%order(k), solver%qfree(2, k), solver%pidx(k), solver%pc(pk_size, k), solver%pb(2, k), &
-                solver%pcoh(k), solver%pr(2, k), solver%pst(k))
-    end if
-    if (allocated(solver%bslot)) then
-      if (size(solver%bslot) /= b%n) deallocate (solver%bslot, solver%blist, solver%bv)
-    end if
-    if (.not. allocated(solver%bslot)) then
-      allocate (solver%bslot(b%n), solver%blist(b%n), solver%bv(6, max(b%n, 1)))
-      solver%bslot = 0
-    end if
+    call grow(solver%order, n)
+    call grow(solver%qfree, 2, n)
+    call grow(solver%pidx, n)
+    call grow(solver%pc, pk_size, n)
+    call grow(solver%pb, 2, n)
+    call grow(solver%pcoh, n)
+    call grow(solver%pr, 2, n)
+    call grow(solver%pst, n)
+    call grow(solver%bslot, b%n, fill=0)     ! kept zero between steps (unpack_bodies)
+    call grow(solver%blist, b%n)
+    call grow(solver%bv, 6, b%n)
     do k = 1, n
       solver%qfree(:, k) = contact_velocity(c, k, b%v, m%vfree) + c%shift(:, k)
       if (c%active(k) .and. c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) call inject(k, c%r(1, k), c%r(2, k))
@@ -808,10 +792,7 @@ contains
     !> with a meshed side, on both their sides.
     subroutine pack_meshes()
       integer :: k, sd, bm, total, j
-      if (allocated(solver%moff)) then
-        if (size(solver%moff) /= m%n) deallocate (solver%moff)
-      end if
-      if (.not. allocated(solver%moff)) allocate (solver%moff(m%n))
+      call grow(solver%moff, m%n)
       solver%moff = -1
       total = 0
       do k = 1, n
@@ -824,26 +805,23 @@ contains
           total = total + solver%gm(sd, k)
         end do
       end do
-      if (allocated(solver%mv)) then
-        if (size(solver%mv) < total) deallocate (solver%mv)
-      end if
-      if (.not. allocated(solver%mv)) allocate (solver%mv(max(total, 16)))
+      call grow(solver%mv, total)
       do bm = 1, m%n
         if (solver%moff(bm) < 0) cycle
         do j = 1, solver%nact(bm)
           solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, solver%anodes(solver%abase(bm) + j))
         end do
       end do
-      k = n
-      if (allocated(solver%gidx)) then
-        if (size(solver%gidx) < n) deallocate (solver%gidx, solver%gside, solver%ggm, solver%gfirst, solver%gslot, &
-                                               solver%gcoh, solver%gst, solver%gc, solver%gwt, solver%gr)
-      end if
-      if (.not. allocated(solver%gidx)) then
-        k = max(n, 16)
-        allocate (solver%gidx(k), solver%gside(4, k), solver%ggm(2, k), solver%gfirst(2, k), solver%gslot(4, k), &
-                  solver%gcoh(k), solver%gst(k), solver%gc(pk_size, k), solver%gwt(4, k), solver%gr(2, k))
-      end if
+      call grow(solver%gidx, n)
+      call grow(solver%gside, 4, n)
+      call grow(solver%ggm, 2, n)
+      call grow(solver%gfirst, 2, n)
+      call grow(solver%gslot, 4, n)
+      call grow(solver%gcoh, n)
+      call grow(solver%gst, n)
+      call grow(solver%gc, pk_size, n)
+      call grow(solver%gwt, 4, n)
+      call grow(solver%gr, 2, n)
       ! Warm start of the contacts with a meshed side.
       do k = 1, n
         if (.not. c%active(k)) cycle

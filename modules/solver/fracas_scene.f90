@@ -7,7 +7,7 @@ module fracas_scene
   use fracas_deck, only: deck_t, body_input_t
   use fracas_errors, only: input_error, status_t, failed
   use fracas_ids, only: inter_id, status_id, bm_rigid, bm_mesh
-  use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
+  use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_begin_step, &
                           rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
   use fracas_drives, only: drive_value
   use fracas_frame_2d, only: frame2_global
@@ -82,10 +82,9 @@ contains
   subroutine scene_build(deck, sc)
     type(deck_t), intent(in) :: deck
     type(scene_t), intent(out) :: sc
-    integer :: nb, ib, im, k, j, pos
+    integer :: nb, ib, im, k, j, pos, nv, nh
     integer, allocatable :: number(:), cd(:), an(:), sub(:), inter(:), status(:)
     real(wp), allocatable :: ref(:, :), mass(:), inertia(:), avrd(:), force(:, :), internals(:, :), points(:, :)
-    real(wp) :: rec_internals(n_internals)
     real(wp) :: density, area, polar, gyrd
     character(len=5), allocatable :: nick(:)
     type(nlgs_settings_t) :: ns
@@ -132,9 +131,7 @@ contains
     call rbdy2_init(sc%bodies, number, ref, mass, inertia, avrd, deck%gravity(1:2))
     ! LMGC90 starts a driven dof of a rigid body at its imposed value (lmgc90)
     sc%bodies%driven_start_imposed = deck%run%driven_start /= 'initial'
-    do k = 1, size(deck%driven)
-      if (deck%driven(k)%model /= 'MAILx') call rbdy2_add_drive(sc%bodies, deck%driven(k))
-    end do
+    call rbdy2_add_drives(sc%bodies, pack(deck%driven, deck%driven%model /= 'MAILx'))
     do k = 1, size(deck%dof_ini)
       associate (d => deck%dof_ini(k))
         if (d%model == 'MAILx') cycle
@@ -178,33 +175,38 @@ contains
     allocate (sc%q(3, nb))
 
     ! History from Vloc_Rloc.INI: contactors named by (body, rank in body).
-    allocate (cd(0), an(0), sub(0), inter(0), status(0), force(2, 0), internals(n_internals, 0), points(2, 0))
-    do k = 1, size(deck%vloc_ini)
+    nv = size(deck%vloc_ini)
+    allocate (cd(nv), an(nv), sub(nv), inter(nv), status(nv), force(2, nv), internals(n_internals, nv), &
+              points(2, nv))
+    nh = 0
+    do k = 1, nv
       associate (r => deck%vloc_ini(k))
         j = inter_id(r%inter)
         if (j == 0) cycle   ! a type this build does not treat: nothing to warm start
-        cd = [cd, tactor_of(r%cdbdy, r%icdbdy, r%icdtac)]
-        an = [an, tactor_of(r%anbdy, r%ianbdy, r%iantac)]
-        sub = [sub, r%cdver]
-        inter = [inter, j]
+        nh = nh + 1
+        cd(nh) = tactor_of(r%cdbdy, r%icdbdy, r%icdtac)
+        an(nh) = tactor_of(r%anbdy, r%ianbdy, r%iantac)
+        sub(nh) = r%cdver
+        inter(nh) = j
         pos = status_id(r%status)
         if (pos == 0) call input_error(r%src%file, r%src%line, 71, "unknown contact status '"//r%status//"'")
-        status = [status, pos]
-        force = reshape([force, [r%rlt, r%rln]], [2, size(cd)])
-        points = reshape([points, r%coor], [2, size(cd)])
-        rec_internals = 0.0_wp
+        status(nh) = pos
+        force(:, nh) = [r%rlt, r%rln]
+        points(:, nh) = r%coor
+        internals(:, nh) = 0.0_wp
         if (allocated(r%internals)) then
           pos = min(n_internals, size(r%internals))
-          rec_internals(1:pos) = r%internals(1:pos)
+          internals(1:pos, nh) = r%internals(1:pos)
         end if
-        internals = reshape([internals, rec_internals], [n_internals, size(cd)])
       end associate
     end do
     sc%contacts%with_cohesion = any(sc%laws%kind == law_czm)
     if (sc%contacts%with_cohesion) then
-      call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, points, internals)
+      call history_build(sc%hist, sc%tactors%n, cd(1:nh), an(1:nh), sub(1:nh), inter(1:nh), status(1:nh), &
+                         force(:, 1:nh), points(:, 1:nh), internals(:, 1:nh))
     else
-      call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, points)
+      call history_build(sc%hist, sc%tactors%n, cd(1:nh), an(1:nh), sub(1:nh), inter(1:nh), status(1:nh), &
+                         force(:, 1:nh), points(:, 1:nh))
     end if
 
     ns%check = deck%run%nlgs_check
