@@ -10,7 +10,7 @@ program fracas
   use fracas_deck, only: deck_t
   use fracas_read_deck, only: read_deck
   use fracas_mailx, only: mailx_solver_summary
-  use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
+  use fracas_scene, only: scene_t, step_report_t, scene_build, scene_free, scene_step
   use fracas_output, only: output_t, output_prepare, output_open, output_vtk, output_outbox, output_snapshot, &
                            output_series, output_close, output_summary, output_timing
   use fracas_version, only: version_report
@@ -180,6 +180,7 @@ contains
     call since(t0, cpu0, t1, cpu1, loop_wall, loop_cpu)
     call output_timing(out, 'loop', loop_wall, loop_cpu)
     call output_close(out)
+    call scene_free(sc)
     if (.not. quiet) then
       write (output_unit, '(a,i0,a,f0.3,a,i0,a,es9.2)') 'fracas: done: ', nsteps - first_step + 1, ' steps in ', loop_wall, &
         ' s, ', total_sweeps, ' NLGS sweeps, worst natural-map residual ', worst_residual

@@ -30,7 +30,7 @@ module fracas_mailx
                                   factor_method_name, dense_spd_inverse
   implicit none
   private
-  public :: mailx_t, mailx_build, mailx_restore_state, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
+  public :: mailx_t, mailx_build, mailx_free, mailx_restore_state, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
             mailx_dense_max, mailx_gauss_values, mailx_radius
@@ -859,6 +859,18 @@ contains
     m%newton_converged = unbalanced <= tol * max(scale, tiny(1.0_wp))
     done = m%newton_converged .or. m%iterations > max_iterations
   end function mailx_converged
+
+  !> Free the factorizations of the large bodies (their C handles: CHOLMOD,
+  !> UMFPACK); the bodies' arrays go with m. Call before m is dropped or rebuilt.
+  subroutine mailx_free(m)
+    type(mailx_t), intent(inout) :: m
+    integer :: b
+    if (.not. allocated(m%big)) return
+    do b = 1, size(m%big)
+      call factor_free(m%big(b)%f)
+      m%big(b)%factored = .false.
+    end do
+  end subroutine mailx_free
 
   !> Detection configuration of the nodes: X_b + (1-θ) h V_b from the reference.
   pure subroutine mailx_detection_coor(m, xn)

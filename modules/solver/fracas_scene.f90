@@ -13,7 +13,7 @@ module fracas_scene
   use fracas_frame_2d, only: frame2_global
   use fracas_rbdy2_side, only: rigid2_add_impulse, rigid2_moment
   use fracas_mailx, only: mailx_t, mailx_build, mailx_begin_step, mailx_detection_coor, mailx_converged, &
-                          mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint
+                          mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint, mailx_free
   use fracas_cracks, only: cracks_t, cracks_init, cracks_update
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
   use fracas_contact_laws, only: law_t, law_from_input, law_czm
@@ -24,7 +24,7 @@ module fracas_scene
                          nlgs_update_cohesive
   implicit none
   private
-  public :: scene_t, step_report_t, scene_build, scene_step, scene_body_impulses
+  public :: scene_t, step_report_t, scene_build, scene_free, scene_step, scene_body_impulses
 
   real(wp), parameter :: pi = acos(-1.0_wp)
 
@@ -243,6 +243,12 @@ contains
       end associate
     end function tactor_of
   end subroutine scene_build
+
+  !> What a scene holds outside Fortran's reach (the meshes' factorizations).
+  subroutine scene_free(sc)
+    type(scene_t), intent(inout) :: sc
+    call mailx_free(sc%meshes)
+  end subroutine scene_free
 
   !> A body whose node is given as (0, 0, 0) and whose contactors are all
   !> polygons has absolute vertices (as LMGC90 reads them): its node becomes the
