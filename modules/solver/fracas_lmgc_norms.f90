@@ -19,46 +19,7 @@ module fracas_lmgc_norms
 
 contains
 
-  !> Add one contact's terms to the check sums of lmgc_norms: d its dimension, w its
-  !> Delassus block (d x d), r0 and r1 its reaction before and after the update
-  !> (du = W (r0 - r1), rbar = (r0 + r1)/2; a contact with rbar = 0 adds nothing).
-  !> The order of the additions is the scene NLGS's (results are compared bit for bit).
-  pure subroutine lmgc_add_sums(d, w, r0, r1, sums, maxes)
-    integer, intent(in) :: d
-    real(wp), intent(in) :: w(d, d), r0(d), r1(d)
-    real(wp), intent(inout) :: sums(6), maxes(2)
-    real(wp) :: du(d), rb(d), w0(d), w1(d), du2, rb2, s4, s5
-    integer :: i, j
-    rb = 0.5_wp * (r0 + r1)
-    if (all(rb == 0.0_wp)) return
-    du = 0.0_wp; w0 = 0.0_wp; w1 = 0.0_wp
-    do j = 1, d
-      do i = 1, d
-        du(i) = du(i) + w(i, j) * (r0(j) - r1(j))
-        w0(i) = w0(i) + w(i, j) * r0(j)
-        w1(i) = w1(i) + w(i, j) * r1(j)
-      end do
-    end do
-    du2 = 0.0_wp; rb2 = 0.0_wp; s4 = 0.0_wp; s5 = 0.0_wp
-    do i = 1, d
-      du2 = du2 + du(i)**2
-      rb2 = rb2 + rb(i)**2
-      sums(3) = sums(3) + rb(i) * du(i)
-      s4 = s4 + w0(i) * r0(i)
-      s5 = s5 + w0(i)**2
-    end do
-    do i = 1, d
-      s4 = s4 + w1(i) * r1(i)
-      s5 = s5 + w1(i)**2
-    end do
-    sums(1) = sums(1) + du2
-    sums(2) = sums(2) + du2 * rb2
-    sums(4) = sums(4) + 0.5_wp * s4
-    sums(5) = sums(5) + 0.5_wp * s5
-    sums(6) = sums(6) + 1.0_wp
-    maxes(1) = max(maxes(1), du2)
-    maxes(2) = max(maxes(2), du2 * rb2)
-  end subroutine lmgc_add_sums
+  include 'lmgc_sums.inc'
 
   !> LMGC90's verdict on one check sweep. sums as the sweep kernels accumulate
   !> them over contacts (du = W (r_old - r_new), rbar the mean reaction):

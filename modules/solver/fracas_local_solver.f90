@@ -4,7 +4,6 @@ module fracas_local_solver
   use fracas_kinds, only: wp
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw
   use fracas_contact_laws, only: coh_factor, coh_uend
-  use fracas_lmgc_norms, only: lmgc_add_sums
   implicit none
   private
   public :: coulomb_2d, coulomb_2d_inv, inverse_block, natural_map_2d, gs_sweep_2d_packed, gs_sweep_mesh
@@ -16,11 +15,13 @@ module fracas_local_solver
 
 contains
 
-  ! The map H of each body model's contact side, included so that the sweeps
-  ! inline it (the same text as fracas_frame_2d, fracas_rbdy2_side, fracas_mailx_side).
+  ! The map H of each body model's contact side and LMGC90's check sums, included
+  ! so that the sweeps inline them (the same text as fracas_frame_2d,
+  ! fracas_rbdy2_side, fracas_mailx_side and fracas_lmgc_norms).
   include '../shared/frame_2d.inc'
   include '../bodies/rbdy2_side.inc'
   include '../bodies/mailx_side.inc'
+  include 'lmgc_sums.inc'
 
   !> Solve u = uf + W r, Signorini (un >= 0, rn >= 0, un rn = 0) and Coulomb
   !> (|rt| <= mu rn, sliding opposite to ut) on one contact, by enumeration of
