@@ -38,32 +38,31 @@ contains
   !> Id of a status name, 0 if unknown. LMGC90's 'nknow' and 'vnish' read as noctc.
   pure integer function status_id(name) result(id)
     character(len=*), intent(in) :: name
-    integer :: i
-    id = 0
-    do i = 1, n_status
-      if (name == status_names(i)) id = i
-    end do
+    id = index_of(status_names, name)
     if (name == 'nknow' .or. name == 'vnish') id = st_noctc
   end function status_id
 
   !> Id of an interaction type name, 0 if unknown.
   pure integer function inter_id(name) result(id)
     character(len=*), intent(in) :: name
-    integer :: i
-    id = 0
-    do i = 1, n_inter
-      if (name == inter_names(i)) id = i
-    end do
+    id = index_of(inter_names, name)
   end function inter_id
 
   !> Id of a contactor kind name ('DISKb' is a DISKx), 0 if unknown.
   pure integer function tactor_kind_id(name) result(id)
     character(len=*), intent(in) :: name
-    integer :: i
-    id = 0
-    do i = 1, n_tactor_kinds
-      if (name == tactor_kind_names(i)) id = i
-    end do
+    id = index_of(tactor_kind_names, name)
     if (name == 'DISKb') id = tk_disk
   end function tactor_kind_id
+
+  !> Position of name in a name table (the last match), 0 if absent.
+  pure integer function index_of(table, name) result(id)
+    character(len=5), intent(in) :: table(:)
+    character(len=*), intent(in) :: name
+    integer :: i
+    id = 0
+    do i = 1, size(table)
+      if (name == table(i)) id = i
+    end do
+  end function index_of
 end module fracas_ids
