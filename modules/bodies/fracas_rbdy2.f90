@@ -9,7 +9,7 @@ module fracas_rbdy2
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   implicit none
   private
-  public :: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_begin_step, &
+  public :: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_add_step_work, rbdy2_begin_step, &
             rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
 
 
@@ -83,7 +83,6 @@ contains
     end do
   end subroutine rbdy2_add_drives
 
-
   !> Start of a step [t, t+h]: external forces (gravity, theta-averaged driven
   !> forces), free velocity, imposed velocities at t+h. Sets v = vfree.
   subroutine rbdy2_begin_step(b, t, h, theta)
@@ -118,6 +117,30 @@ contains
     end do
     b%v = b%vfree
   end subroutine rbdy2_begin_step
+
+  !> Work of gravity on the free dofs and of the force drives over the step [t, t+h]
+  !> (theta rule on the displacement), added to work_gravity and work_forces; before
+  !> rbdy2_end_step (it reads vbegin and v).
+  subroutine rbdy2_add_step_work(b, t, h, theta, work_gravity, work_forces)
+    type(rbdy2_t), intent(in) :: b
+    real(wp), intent(in) :: t, h, theta
+    real(wp), intent(inout) :: work_gravity, work_forces
+    integer :: k
+    real(wp) :: dx(3)
+    do k = 1, b%n
+      dx = h * ((1.0_wp - theta) * b%vbegin(:, k) + theta * b%v(:, k))
+      if (.not. b%driven(1, k)) work_gravity = work_gravity + b%mass(1, k) * b%gravity(1) * dx(1)
+      if (.not. b%driven(2, k)) work_gravity = work_gravity + b%mass(2, k) * b%gravity(2) * dx(2)
+    end do
+    do k = 1, size(b%drives)
+      associate (d => b%drives(k))
+        if (d%is_velocity) cycle
+        dx = h * ((1.0_wp - theta) * b%vbegin(:, d%body) + theta * b%v(:, d%body))
+        work_forces = work_forces + dx(d%dof) * ((1.0_wp - theta) * drive_value(d, t) + &
+                                                 theta * drive_value(d, t + h))
+      end associate
+    end do
+  end subroutine rbdy2_add_step_work
 
   !> Configuration where contacts are detected: ref + xbegin + (1-theta) h vbegin.
   pure subroutine rbdy2_detection_coor(b, h, theta, q)

@@ -7,9 +7,8 @@ module fracas_scene
   use fracas_deck, only: deck_t, body_input_t
   use fracas_errors, only: input_error, status_t, failed
   use fracas_ids, only: inter_id, status_id, bm_rigid, bm_mesh
-  use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_begin_step, &
+  use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_add_step_work, rbdy2_begin_step, &
                           rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
-  use fracas_drives, only: drive_value
   use fracas_frame_2d, only: frame2_global
   use fracas_rbdy2_side, only: rigid2_add_impulse, rigid2_moment
   use fracas_mailx, only: mailx_t, mailx_build, mailx_begin_step, mailx_detection_coor, mailx_converged, &
@@ -284,7 +283,7 @@ contains
     integer :: k, pos, nover, checks, checks_left
     logical :: pair_known, swapped
     integer(i8) :: t0, t1, t2, rate
-    real(wp) :: margin, vmax, gap_end, dx(3), stored, coh_work, released, dissipated_all
+    real(wp) :: margin, vmax, gap_end, stored, coh_work, released, dissipated_all
     type(nlgs_report_t) :: newton_rep
     call system_clock(t0, rate)
     t1 = t0
@@ -389,19 +388,7 @@ contains
       call cracks_update(sc%cracks, c, sc%laws, sc%steps_done == 0, sc%step + 1)
 
       ! Energy audit of the step (before the begin state is overwritten).
-      do k = 1, b%n
-        dx = sc%h * ((1.0_wp - sc%theta) * b%vbegin(:, k) + sc%theta * b%v(:, k))
-        if (.not. b%driven(1, k)) sc%work_gravity = sc%work_gravity + b%mass(1, k) * b%gravity(1) * dx(1)
-        if (.not. b%driven(2, k)) sc%work_gravity = sc%work_gravity + b%mass(2, k) * b%gravity(2) * dx(2)
-      end do
-      do k = 1, size(b%drives)
-        associate (d => b%drives(k))
-          if (d%is_velocity) cycle
-          dx = sc%h * ((1.0_wp - sc%theta) * b%vbegin(:, d%body) + sc%theta * b%v(:, d%body))
-          sc%work_forces = sc%work_forces + dx(d%dof) * ((1.0_wp - sc%theta) * drive_value(d, sc%time) + &
-                                                         sc%theta * drive_value(d, sc%time + sc%h))
-        end associate
-      end do
+      call rbdy2_add_step_work(b, sc%time, sc%h, sc%theta, sc%work_gravity, sc%work_forces)
       sc%work_supports = sc%work_supports + support_work(sc)
       dissipated_all = 0.0_wp
       nover = 0
