@@ -3,13 +3,14 @@
 program fracas
   use, intrinsic :: iso_fortran_env, only: output_unit, int64
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged, set_error_context, last_error
+  use fracas_errors, only: fatal, warn, set_cleanup, stop_run, exit_unconverged, set_error_context, last_error, &
+                           status_t
   use fracas_strings, only: itoa, rtoa
   use fracas_datbox_text, only: parse_int
   use fracas_deck, only: deck_t
   use fracas_read_deck, only: read_deck
   use fracas_mailx, only: mailx_solver_summary
-  use fracas_scene, only: scene_t, step_report_t, scene_build, scene_step
+  use fracas_scene, only: scene_t, step_report_t, scene_build, scene_free, scene_step
   use fracas_output, only: output_t, output_prepare, output_open, output_vtk, output_outbox, output_snapshot, &
                            output_series, output_close, output_summary, output_timing
   use fracas_version, only: version_report
@@ -26,6 +27,7 @@ program fracas
   type(scene_t) :: sc
   type(output_t) :: out
   type(step_report_t) :: rep
+  type(status_t) :: status
   integer :: i, nargs, nsteps, istep, first_step, every, unconverged, late, hdf5_every, first_unconverged
   integer :: restart_step, vtk_frames, outbox_writes
   integer(int64) :: total_sweeps
@@ -151,7 +153,8 @@ contains
     call clocks(t0, cpu0)
     do istep = first_step, nsteps
       call set_error_context(step='step '//itoa(istep)//' (t='//rtoa(sc%time + sc%h)//')')
-      call scene_step(sc, rep)
+      call scene_step(sc, rep, status)
+      if (.not. status%ok) call fatal(status%message)   ! a body whose matrix does not factorize
       fault = scene_fault(sc)
       if (len(fault) > 0) call fatal('step '//itoa(sc%step)//' (t='//rtoa(sc%time)//'): '//fault// &
         '. The run stops; '//out_dir//'/OUTBOX/fracas.h5 holds the steps before it and is marked incomplete')
@@ -177,6 +180,7 @@ contains
     call since(t0, cpu0, t1, cpu1, loop_wall, loop_cpu)
     call output_timing(out, 'loop', loop_wall, loop_cpu)
     call output_close(out)
+    call scene_free(sc)
     if (.not. quiet) then
       write (output_unit, '(a,i0,a,f0.3,a,i0,a,es9.2)') 'fracas: done: ', nsteps - first_step + 1, ' steps in ', loop_wall, &
         ' s, ', total_sweeps, ' NLGS sweeps, worst natural-map residual ', worst_residual

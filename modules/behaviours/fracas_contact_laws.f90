@@ -5,6 +5,7 @@
 module fracas_contact_laws
   use fracas_kinds, only: wp
   use fracas_deck, only: law_input_t
+  use fracas_read_tact_behav, only: known_laws
   use fracas_errors, only: input_error
   use fracas_ids, only: st_slifw, st_slibw, st_cslfw, st_cslbw
   use fracas_czm, only: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo, czm_beta_power
@@ -133,10 +134,7 @@ contains
       law%czm%g2 = param(8)
     case default
       call input_error(inp%src%file, inp%src%line, 9, "contact law '"//trim(inp%name)// &
-        "' is read but not supported by the solver yet (supported: IQS_CLB, GAP_SGR_CLB, "// &
-        "VEL_SGR_CLB, IQS_CLB_g0, IQS_DS_CLB, GAP_SGR_DS_CLB, RST_CLB, RST_DS_CLB, ELASTIC_REPELL_CLB, "// &
-        "VISCO_ELASTIC_REPELL_CLB, COUPLED_DOF, IQS_MAC_CZM, MAC_CZM, "// &
-        "MP3_CZM, IQS_MAL_CZM, MAL_CZM, IQS_TH_CZM, TH_CZM, IQS_EXPO_CZM, EXPO_CZM)")
+        "' is read but not supported by the solver yet (supported: "//known_laws(solver=.true.)//")")
     end select
     ! Checks point at the parameter's own line and column in TACT_BEHAV.DAT.
     if (law%kind == law_czm) then

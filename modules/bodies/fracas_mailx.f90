@@ -18,7 +18,7 @@
 module fracas_mailx
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, input_error, set_error_context
+  use fracas_errors, only: fatal, input_error, status_t, raise, failed
   use fracas_strings, only: itoa, rtoa
   use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t
   use fracas_drives, only: drive_t, drive_from_input, drive_value
@@ -30,7 +30,7 @@ module fracas_mailx
                                   factor_method_name, dense_spd_inverse
   implicit none
   private
-  public :: mailx_t, mailx_build, mailx_restore_state, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
+  public :: mailx_t, mailx_build, mailx_free, mailx_restore_state, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
             mailx_dense_max, mailx_gauss_values, mailx_radius
@@ -206,13 +206,15 @@ contains
     end do
     m%any_nonlinear = any(m%nonlinear)
     ! Drives on mesh nodes
-    allocate (m%drives(0))
+    allocate (m%drives(count(deck%driven%model == 'MAILx')))
+    j = 0
     do k = 1, size(deck%driven)
       associate (d => deck%driven(k))
         if (d%model /= 'MAILx') cycle
         node = mesh_node(d%body, d%node, d%src%file, d%src%line)
         if (d%dof < 1 .or. d%dof > 2) call input_error(d%src%file, d%src%line, 9, 'a mesh node has dofs 1 and 2')
-        m%drives = [m%drives, drive_from_input(d, node)]
+        j = j + 1
+        m%drives(j) = drive_from_input(d, node)
         if (d%kind == 'vlocy') m%driven(d%dof, node) = .true.
       end associate
     end do
@@ -499,15 +501,17 @@ contains
   !> m%fint = internal forces at displacements u: linear bodies by their stored
   !> stiffness, nonlinear ones by their elements (Gauss-point states in m%gp,
   !> tangent reassembled and A_ff refactorized).
-  subroutine internal_forces(m, u)
+  subroutine internal_forces(m, u, status)
     type(mailx_t), intent(inout) :: m
     real(wp), intent(in) :: u(:, :)
+    type(status_t), intent(inout), optional :: status
     integer :: b, i1, i2
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
       if (m%nonlinear(b)) then
         call assemble_body(m, b, u, with_mass=.false.)
-        call factorize_body(m, b)
+        call factorize_body(m, b, status=status)
+        if (failed(status)) return
       else
         call body_k_times(m, b, 2 * (i2 - i1 + 1), u(:, i1:i2), m%fint(:, i1:i2))
       end if
@@ -560,17 +564,20 @@ contains
 
   !> Factorize A_ff = M_ff + h²θ² K_ff of body b: the dense inverse, or the
   !> sparse factorization (numeric refactorization once the pattern is known).
-  subroutine factorize_body(m, b, src)
+  !> A matrix that does not factorize: status (the message names the body), or
+  !> the run stops.
+  subroutine factorize_body(m, b, src, status)
     type(mailx_t), intent(inout) :: m
     integer, intent(in) :: b
     type(source_t), intent(in), optional :: src   !< the body's deck line: a failure there is an input error
+    type(status_t), intent(inout), optional :: status
     integer :: nd, nf, i, j, k, n0, minor
     character(len=:), allocatable :: at
     integer, allocatable :: fidx(:), ti(:), tj(:)
     real(wp), allocatable :: a(:, :), ai(:, :), av(:)
     type(sparse_t) :: aff
     real(wp) :: c2
-    logical :: ok
+    type(status_t) :: st
     nd = body_ndof(m, b)
     n0 = m%node_first(b)
     fidx = pack([(i, i=1, nd)], .not. reshape(m%driven(:, n0:m%node_first(b + 1) - 1), [nd]))
@@ -589,15 +596,16 @@ contains
       m%dinv(m%dfirst(b) + 1:m%dfirst(b) + nd * nd) = 0.0_wp
       if (nf > 0) then
         ai = a(fidx, fidx)
-        call dense_spd_inverse(ai, ok, minor)
-        if (.not. ok) then
+        call dense_spd_inverse(ai, st, minor)
+        if (.not. st%ok) then
           at = ''
           if (minor > 0) at = ' at node '//itoa((fidx(minor) - 1) / 2 + 1)//' dof '//itoa(2 - mod(fidx(minor), 2))// &
                                  ' (leading minor '//itoa(minor)//' of '//itoa(nf)//')'
           at = 'MAILx body '//itoa(b)//': its iteration matrix M + (h theta)^2 K is not positive definite'// &
                at//' (a density, Young''s modulus or time step out of proportion with the others?)'
           if (present(src)) call input_error(src%file, src%line, 0, at)
-          call fatal(at)
+          call raise(status, at)
+          return
         end if
         do j = 1, nf
           do i = 1, nf
@@ -633,14 +641,16 @@ contains
         if (m%lumped(b)) av(k) = m%mdiag(2 - mod(fidx(i), 2), n0 + (fidx(i) - 1) / 2)
       end do
       call sparse_from_triplets(nf, ti(1:k), tj(1:k), av(1:k), aff)
-      call set_error_context(object='MAILx body '//itoa(b)//' (iteration matrix M + (h theta)^2 K)')
       if (bb%factored) then
-        call factor_update(bb%f, aff)
+        call factor_update(bb%f, aff, st)
       else
-        call factor_build(bb%f, aff, merge('cholmod', 'auto   ', m%method == 'cholmod'))
+        call factor_build(bb%f, aff, merge('cholmod', 'auto   ', m%method == 'cholmod'), status=st)
         bb%factored = .true.
       end if
-      call set_error_context(object='')
+      if (.not. st%ok) then
+        call raise(status, 'MAILx body '//itoa(b)//' (iteration matrix M + (h theta)^2 K): '//st%message)
+        return
+      end if
       ! The cached compliance is stale once A changes.
       if (allocated(bb%c)) deallocate (bb%c)
     end associate
@@ -727,20 +737,26 @@ contains
 
   !> x := A_ff⁻¹ x on body b (x as in body_k_times; driven dofs of x are
   !> ignored on input and zero on output).
-  subroutine body_solve(m, b, nd, x)
+  subroutine body_solve(m, b, nd, x, status)
     type(mailx_t), intent(inout) :: m
     integer, intent(in) :: b, nd
     real(wp), intent(inout) :: x(nd)
+    type(status_t), intent(inout), optional :: status
     integer :: i
     real(wp) :: y(nd)
     real(wp), allocatable :: xf(:)
+    type(status_t) :: st
     if (m%dense(b)) then
       call dense_times(m%dinv(m%dfirst(b) + 1), nd, x, y)
       x = y
     else
       associate (bb => m%big(b))
         xf = pack(x, bb%free_of > 0)
-        call factor_solve(m%big(b)%f, xf)
+        call factor_solve(m%big(b)%f, xf, st)
+        if (.not. st%ok) then
+          call raise(status, 'MAILx body '//itoa(b)//': '//st%message)
+          return
+        end if
         do i = 1, nd
           x(i) = 0.0_wp
           if (bb%free_of(i) > 0) x(i) = xf(bb%free_of(i))
@@ -751,10 +767,12 @@ contains
 
   !> Start of a step [t, t+h]: external forces (gravity, θ-averaged driven
   !> forces), the first iterate (begin velocities, driven dofs at their imposed
-  !> end value) and its free velocity.
-  subroutine mailx_begin_step(m, t)
+  !> end value) and its free velocity. A body whose matrix does not factorize:
+  !> status, or the run stops.
+  subroutine mailx_begin_step(m, t, status)
     type(mailx_t), intent(inout) :: m
     real(wp), intent(in) :: t
+    type(status_t), intent(inout), optional :: status
     integer :: k, b, i1, i2
     real(wp) :: e_before
     logical :: jump
@@ -798,30 +816,35 @@ contains
       end associate
     end do
     m%imp = 0.0_wp
-    call mailx_iterate(m)
+    call mailx_iterate(m, status)
   end subroutine mailx_begin_step
 
   !> Newton iterate at the current velocities m%v: the residual R(V), and the
   !> free velocity m%vfree = V + A_ff⁻¹ R (A refactorized for nonlinear bodies).
-  subroutine mailx_iterate(m)
+  subroutine mailx_iterate(m, status)
     type(mailx_t), intent(inout) :: m
+    type(status_t), intent(inout), optional :: status
     integer :: b, i1, i2
     m%iterations = m%iterations + 1
-    call residual(m)
+    call residual(m, status)
+    if (failed(status)) return
     m%vfree = m%res
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
-      call body_solve(m, b, 2 * (i2 - i1 + 1), m%vfree(:, i1:i2))
+      call body_solve(m, b, 2 * (i2 - i1 + 1), m%vfree(:, i1:i2), status)
+      if (failed(status)) return
     end do
     m%vfree = m%v + m%vfree
   end subroutine mailx_iterate
 
   !> m%res = R(V) = h Fext - M (V - Vb) - h ((1-θ) Fi_b + θ Fi(X(V))).
-  subroutine residual(m)
+  subroutine residual(m, status)
     type(mailx_t), intent(inout) :: m
+    type(status_t), intent(inout), optional :: status
     integer :: b, i1, i2
     m%x = m%xbegin + m%h * ((1.0_wp - m%theta) * m%vbegin + m%theta * m%v)
-    call internal_forces(m, m%x)
+    call internal_forces(m, m%x, status)
+    if (failed(status)) return
     m%tmp = m%v - m%vbegin
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
@@ -855,21 +878,35 @@ contains
   !> relative to both (a J2 body unloading through zero stress has Fi ~ 0 at the
   !> step end, and a scale of the end forces alone was out of reach of round-off:
   !> newton_max_iterations reached at every such step).
-  logical function mailx_converged(m, tol, max_iterations) result(done)
+  logical function mailx_converged(m, tol, max_iterations, status) result(done)
     type(mailx_t), intent(inout) :: m
     real(wp), intent(in) :: tol
     integer, intent(in) :: max_iterations
+    type(status_t), intent(inout), optional :: status   !< a tangent that does not factorize (done is then true)
     real(wp) :: unbalanced, scale
     done = .true.
     m%newton_converged = .true.
     if (.not. m%any_nonlinear) return
-    call mailx_iterate(m)
+    call mailx_iterate(m, status)
+    if (failed(status)) return
     unbalanced = sqrt(sum((m%res + m%imp)**2, mask=.not. m%driven))
     scale = sqrt(sum((m%h * m%fext)**2)) + m%h * max(sqrt(sum(m%fint**2)), sqrt(sum(m%fint_begin**2))) + &
             sqrt(sum(m%imp**2)) + sqrt(sum((m%mdiag * (m%v - m%vbegin))**2))
     m%newton_converged = unbalanced <= tol * max(scale, tiny(1.0_wp))
     done = m%newton_converged .or. m%iterations > max_iterations
   end function mailx_converged
+
+  !> Free the factorizations of the large bodies (their C handles: CHOLMOD,
+  !> UMFPACK); the bodies' arrays go with m. Call before m is dropped or rebuilt.
+  subroutine mailx_free(m)
+    type(mailx_t), intent(inout) :: m
+    integer :: b
+    if (.not. allocated(m%big)) return
+    do b = 1, size(m%big)
+      call factor_free(m%big(b)%f)
+      m%big(b)%factored = .false.
+    end do
+  end subroutine mailx_free
 
   !> Detection configuration of the nodes: X_b + (1-θ) h V_b from the reference.
   pure subroutine mailx_detection_coor(m, xn)

@@ -9,7 +9,7 @@ module fracas_rbdy2
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   implicit none
   private
-  public :: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
+  public :: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_add_step_work, rbdy2_begin_step, &
             rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
 
 
@@ -62,22 +62,26 @@ contains
     allocate (b%drives(0))
   end subroutine rbdy2_init
 
-  !> Add a driven dof read from DRV_DOF.DAT (body serial number = index).
-  subroutine rbdy2_add_drive(b, inp)
+  !> The driven dofs read from DRV_DOF.DAT (body serial number = index), all at once.
+  subroutine rbdy2_add_drives(b, inputs)
     type(rbdy2_t), intent(inout) :: b
-    type(driven_dof_input_t), intent(in) :: inp
-    type(drive_t) :: d
-    if (inp%body < 1 .or. inp%body > b%n) &
-      call input_error(inp%src%file, inp%src%line, 9, 'driven body number out of range')
-    d = drive_from_input(inp, inp%body)
-    b%drives = [b%drives, d]
-    if (d%is_velocity) then
-      b%driven(d%dof, d%body) = .true.
-      b%inv_mass(d%dof, d%body) = 0.0_wp
-      b%clamped(d%body) = all(b%driven(:, d%body))
-    end if
-  end subroutine rbdy2_add_drive
-
+    type(driven_dof_input_t), intent(in) :: inputs(:)
+    integer :: k
+    deallocate (b%drives)
+    allocate (b%drives(size(inputs)))
+    do k = 1, size(inputs)
+      associate (inp => inputs(k), d => b%drives(k))
+        if (inp%body < 1 .or. inp%body > b%n) &
+          call input_error(inp%src%file, inp%src%line, 9, 'driven body number out of range')
+        d = drive_from_input(inp, inp%body)
+        if (d%is_velocity) then
+          b%driven(d%dof, d%body) = .true.
+          b%inv_mass(d%dof, d%body) = 0.0_wp
+          b%clamped(d%body) = all(b%driven(:, d%body))
+        end if
+      end associate
+    end do
+  end subroutine rbdy2_add_drives
 
   !> Start of a step [t, t+h]: external forces (gravity, theta-averaged driven
   !> forces), free velocity, imposed velocities at t+h. Sets v = vfree.
@@ -113,6 +117,30 @@ contains
     end do
     b%v = b%vfree
   end subroutine rbdy2_begin_step
+
+  !> Work of gravity on the free dofs and of the force drives over the step [t, t+h]
+  !> (theta rule on the displacement), added to work_gravity and work_forces; before
+  !> rbdy2_end_step (it reads vbegin and v).
+  subroutine rbdy2_add_step_work(b, t, h, theta, work_gravity, work_forces)
+    type(rbdy2_t), intent(in) :: b
+    real(wp), intent(in) :: t, h, theta
+    real(wp), intent(inout) :: work_gravity, work_forces
+    integer :: k
+    real(wp) :: dx(3)
+    do k = 1, b%n
+      dx = h * ((1.0_wp - theta) * b%vbegin(:, k) + theta * b%v(:, k))
+      if (.not. b%driven(1, k)) work_gravity = work_gravity + b%mass(1, k) * b%gravity(1) * dx(1)
+      if (.not. b%driven(2, k)) work_gravity = work_gravity + b%mass(2, k) * b%gravity(2) * dx(2)
+    end do
+    do k = 1, size(b%drives)
+      associate (d => b%drives(k))
+        if (d%is_velocity) cycle
+        dx = h * ((1.0_wp - theta) * b%vbegin(:, d%body) + theta * b%v(:, d%body))
+        work_forces = work_forces + dx(d%dof) * ((1.0_wp - theta) * drive_value(d, t) + &
+                                                 theta * drive_value(d, t + h))
+      end associate
+    end do
+  end subroutine rbdy2_add_step_work
 
   !> Configuration where contacts are detected: ref + xbegin + (1-theta) h vbegin.
   pure subroutine rbdy2_detection_coor(b, h, theta, q)

@@ -7,14 +7,14 @@ module fracas_contactors
   use fracas_kinds, only: wp
   use fracas_deck, only: body_input_t, tactor_input_t
   use fracas_errors, only: input_error
-  use fracas_ids, only: bm_rigid, bm_mesh
+  use fracas_ids, only: bm_rigid, bm_mesh, tk_disk, tk_xksid, tk_jonc, tk_polyg, tk_clxxx, tk_alpxx, &
+                        n_tactor_kinds, tactor_kind_names, tactor_kind_id
   implicit none
   private
   public :: tactors_t, tactors_build, tactor_center, tactor_kind_name, body_area_inertia, &
             polygon_area_moments, tactor_vertices, tk_disk, tk_xksid, tk_jonc, tk_polyg, &
             tk_clxxx, tk_alpxx, cl_point
 
-  integer, parameter :: tk_disk = 1, tk_xksid = 2, tk_jonc = 3, tk_polyg = 4, tk_clxxx = 5, tk_alpxx = 6
   real(wp), parameter :: pi = acos(-1.0_wp)
 
   type :: tactors_t
@@ -41,19 +41,23 @@ module fracas_contactors
 
 contains
 
+  !> The name of a contactor kind id (fracas_ids' table), '?????' if none.
   pure function tactor_kind_name(kind) result(name)
     integer, intent(in) :: kind
     character(len=5) :: name
-    select case (kind)
-    case (tk_disk); name = 'DISKx'
-    case (tk_xksid); name = 'xKSID'
-    case (tk_jonc); name = 'JONCx'
-    case (tk_polyg); name = 'POLYG'
-    case (tk_clxxx); name = 'CLxxx'
-    case (tk_alpxx); name = 'ALpxx'
-    case default; name = '?????'
-    end select
+    name = '?????'
+    if (kind >= 1 .and. kind <= n_tactor_kinds) name = tactor_kind_names(kind)
   end function tactor_kind_name
+
+  !> The contactor kind names, comma separated.
+  function names() result(s)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = tactor_kind_names(1)
+    do i = 2, n_tactor_kinds
+      s = s//', '//tactor_kind_names(i)
+    end do
+  end function names
 
   !> Flatten the contactors of all bodies into one list. Bodies are numbered
   !> within their model in the order given; mesh nodes over all meshed bodies
@@ -107,23 +111,9 @@ contains
       type(tactor_input_t), intent(in) :: inp
       integer, intent(in) :: rank
       integer :: nn
-      select case (inp%kind)
-      case ('DISKx', 'DISKb')
-        t%kind(k) = tk_disk
-      case ('xKSID')
-        t%kind(k) = tk_xksid
-      case ('JONCx')
-        t%kind(k) = tk_jonc
-      case ('POLYG')
-        t%kind(k) = tk_polyg
-      case ('CLxxx')
-        t%kind(k) = tk_clxxx
-      case ('ALpxx')
-        t%kind(k) = tk_alpxx
-      case default
-        call input_error(inp%src%file, inp%src%line, 2, "contactor '"//inp%kind// &
-          "' is read but not supported by the solver yet (supported: DISKx, DISKb, xKSID, JONCx, POLYG, CLxxx, ALpxx)")
-      end select
+      t%kind(k) = tactor_kind_id(inp%kind)
+      if (t%kind(k) == 0) call input_error(inp%src%file, inp%src%line, 2, "contactor '"//inp%kind// &
+        "' is read but not supported by the solver yet (supported: DISKb and "//names()//")")
       counts(t%kind(k)) = counts(t%kind(k)) + 1
       t%kind_index(k) = counts(t%kind(k))
       if (bd%model == 'MAILx') then

@@ -7,11 +7,13 @@ module fracas_detection
   use fracas_deck, only: see_rule_input_t
   use fracas_errors, only: input_error
   use fracas_ids, only: i_dkdkx, i_dkjcx, i_dkkdx, i_dkplx, i_plplx, i_pljcx, i_clalp, i_cljcx, i_dkalp, i_plalp, &
-                        st_noctc, bm_rigid, bm_mesh
+                        st_noctc, bm_rigid, bm_mesh, tactor_kind_id
   use fracas_contactors, only: tactors_t, tactor_center, tactor_vertices, tk_disk, tk_xksid, tk_jonc, tk_polyg, &
-                               tk_clxxx, tk_alpxx, cl_point
+                               tk_clxxx, tk_alpxx, cl_point, tactor_kind_name
   use fracas_mesh_pairs, only: point_polyline, point_segment_distance
   use fracas_contacts, only: contacts_t, contacts_reserve
+  use fracas_rbdy2_side, only: rigid2_levers, rigid2_point_velocity
+  use fracas_mailx_side, only: mesh2_point_velocity
   use fracas_dkdkx, only: dkdkx_geometry
   use fracas_dkjcx, only: dkjcx_geometry
   use fracas_dkkdx, only: dkkdx_geometry
@@ -67,7 +69,7 @@ contains
     real(wp), allocatable :: radii(:)
     allocate (det%cls(t%n), cls_kind(0), cls_color(0))
     do k = 1, t%n
-      kname = kind_name(t%kind(k))
+      kname = tactor_kind_name(t%kind(k))
       det%cls(k) = 0
       do j = 1, size(cls_kind)
         if (cls_kind(j) == kname .and. cls_color(j) == t%color(k)) det%cls(k) = j
@@ -108,10 +110,10 @@ contains
     allocate (det%may_meet(det%ncls, det%ncls))
     do j = 1, det%ncls
       do k = 1, det%ncls
-        det%may_meet(k, j) = (det%rule_law(k, j) /= 0 .and. inter_of(kind_of_name(cls_kind(k)), &
-                                                                    kind_of_name(cls_kind(j))) /= 0) .or. &
-                             (det%rule_law(j, k) /= 0 .and. inter_of(kind_of_name(cls_kind(j)), &
-                                                                    kind_of_name(cls_kind(k))) /= 0)
+        det%may_meet(k, j) = (det%rule_law(k, j) /= 0 .and. inter_of(tactor_kind_id(cls_kind(k)), &
+                                                                    tactor_kind_id(cls_kind(j))) /= 0) .or. &
+                             (det%rule_law(j, k) /= 0 .and. inter_of(tactor_kind_id(cls_kind(j)), &
+                                                                    tactor_kind_id(cls_kind(k))) /= 0)
       end do
     end do
     ! Ordinary disks and polygons go into the cell grid; much larger ones (and
@@ -148,28 +150,6 @@ contains
         if (cls_kind(i) == kind .and. cls_color(i) == color) find_cls = i
       end do
     end function find_cls
-
-    integer function kind_of_name(name)
-      character(len=5), intent(in) :: name
-      integer :: kk
-      kind_of_name = 0
-      do kk = 1, 6
-        if (kind_name(kk) == name) kind_of_name = kk
-      end do
-    end function kind_of_name
-
-    function kind_name(kind) result(name)
-      integer, intent(in) :: kind
-      character(len=5) :: name
-      select case (kind)
-      case (tk_disk); name = 'DISKx'
-      case (tk_xksid); name = 'xKSID'
-      case (tk_polyg); name = 'POLYG'
-      case (tk_clxxx); name = 'CLxxx'
-      case (tk_alpxx); name = 'ALpxx'
-      case default; name = 'JONCx'
-      end select
-    end function kind_name
   end subroutine detection_init
 
   !> Median (upper median for an even count) by quickselect: linear on average.
@@ -717,11 +697,11 @@ contains
       real(wp) :: v(2), r(2)
       integer :: b
       if (t%model(k) == bm_mesh) then
-        v = mwt(first) * vm(:, mnode(first)) + mwt(first + 1) * vm(:, mnode(first + 1))
+        v = mesh2_point_velocity(vm(:, mnode(first)), vm(:, mnode(first + 1)), mwt(first), mwt(first + 1))
       else
         b = t%body(k)
         r = point - q(1:2, b)
-        v = vq(1:2, b) + vq(3, b) * [-r(2), r(1)]
+        v = rigid2_point_velocity(vq(:, b), r(1), r(2))
       end if
     end function point_velocity
 
@@ -742,7 +722,6 @@ contains
       integer, intent(in) :: kcd, kan, cdver, anseg
       integer, intent(inout), optional :: slot
       integer :: k, b1, b2
-      real(wp) :: tang(2), rcd(2), ran(2)
       if (gap > alert) then
         if (.not. present(h)) return
         if (gap + h * min(0.0_wp, approach(kcd, kan)) > alert) return
@@ -773,19 +752,10 @@ contains
       c%point(:, k) = point
       c%gap(k) = gap
       c%length(k) = len
-      tang = [normal(2), -normal(1)]
       ! Rigid sides: lever arms from the body node to the contact point.
       c%lever(:, k) = 0.0_wp
-      if (c%cdm(k) == bm_rigid) then
-        rcd = point - q(1:2, b1)
-        c%lever(1, k) = cross(rcd, tang)
-        c%lever(2, k) = cross(rcd, normal)
-      end if
-      if (c%anm(k) == bm_rigid) then
-        ran = point - q(1:2, b2)
-        c%lever(3, k) = cross(ran, tang)
-        c%lever(4, k) = cross(ran, normal)
-      end if
+      if (c%cdm(k) == bm_rigid) c%lever(1:2, k) = rigid2_levers(point - q(1:2, b1), normal(1), normal(2))
+      if (c%anm(k) == bm_rigid) c%lever(3:4, k) = rigid2_levers(point - q(1:2, b2), normal(1), normal(2))
       if (c%with_mesh) then
         c%mnode(:, k) = mnode
         c%mwt(:, k) = mwt
@@ -842,9 +812,4 @@ contains
       v(2, i) = c(2) + sn * sx(i) * ax1 + cs * sy(i) * ax2
     end do
   end function wall_rectangle
-
-  pure real(wp) function cross(a, b)
-    real(wp), intent(in) :: a(2), b(2)
-    cross = a(1) * b(2) - a(2) * b(1)
-  end function cross
 end module fracas_detection

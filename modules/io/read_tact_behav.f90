@@ -16,54 +16,62 @@ module fracas_read_tact_behav
   private
   public :: read_tact_behav, law_param_count, law_param_names, known_laws
 
+  !> The laws of TACT_BEHAV.DAT: the reader reads them all, the solver runs those
+  !> marked solver (fracas_contact_laws: law_from_input; its message lists them).
   type :: law_spec_t
     character(len=30) :: name
     character(len=60) :: layout    !< parameter names, '/' between lines
+    logical :: solver              !< the solver runs it
   end type law_spec_t
 
   integer, parameter :: n_specs = 29
   type(law_spec_t), parameter :: specs(n_specs) = [ &
-    law_spec_t('IQS_CLB', 'fric'), &
-    law_spec_t('IQS_CLB_g0', 'fric'), &
-    law_spec_t('GAP_SGR_CLB', 'fric'), &
-    law_spec_t('VEL_SGR_CLB', 'fric'), &
-    law_spec_t('IQS_DS_CLB', 'dfric sfric'), &
-    law_spec_t('GAP_SGR_DS_CLB', 'dfric sfric'), &
-    law_spec_t('VEL_SGR_DS_CLB', 'dfric sfric'), &
-    law_spec_t('RST_CLB', 'restn restt/fric'), &
-    law_spec_t('RST_DS_CLB', 'restn restt/dfric sfric'), &
-    law_spec_t('ELASTIC_REPELL_CLB', 'stiff/fric'), &
-    law_spec_t('VISCO_ELASTIC_REPELL_CLB', 'stiff etan/fric'), &
-    law_spec_t('IQS_WET_DS_CLB', 'cohn coht/wethk/dfric sfric'), &
-    law_spec_t('MAC_CZM', 'dfric sfric/cn ct/visco w'), &
-    law_spec_t('IQS_MAC_CZM', 'dfric sfric/cn ct/visco w'), &
-    law_spec_t('MP_CZM', 'dfric sfric/cn ct/w'), &
-    law_spec_t('MP3_CZM', 'dfric sfric/cn ct/smax w'), &
-    law_spec_t('MAL_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2'), &
-    law_spec_t('IQS_MAL_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2'), &
-    law_spec_t('TH_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/dp1 dp2'), &
-    law_spec_t('IQS_TH_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/dp1 dp2'), &
-    law_spec_t('EXPO_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/eta'), &
-    law_spec_t('IQS_EXPO_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/eta'), &
-    law_spec_t('ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi'), &
-    law_spec_t('IQS_ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi'), &
-    law_spec_t('IQS_STICK', ''), &
-    law_spec_t('COUPLED_DOF', ''), &
-    law_spec_t('GAP_SGR_STICK', ''), &
-    law_spec_t('ER_MAC_CZM', 'dfric sfric/cn ct/visco w'), &
-    law_spec_t('postGAP_IQS_MAC_CZM', 'dfric sfric/cn ct/visco w')]
+    law_spec_t('IQS_CLB', 'fric', .true.), &
+    law_spec_t('IQS_CLB_g0', 'fric', .true.), &
+    law_spec_t('GAP_SGR_CLB', 'fric', .true.), &
+    law_spec_t('VEL_SGR_CLB', 'fric', .true.), &
+    law_spec_t('IQS_DS_CLB', 'dfric sfric', .true.), &
+    law_spec_t('GAP_SGR_DS_CLB', 'dfric sfric', .true.), &
+    law_spec_t('VEL_SGR_DS_CLB', 'dfric sfric', .false.), &
+    law_spec_t('RST_CLB', 'restn restt/fric', .true.), &
+    law_spec_t('RST_DS_CLB', 'restn restt/dfric sfric', .true.), &
+    law_spec_t('ELASTIC_REPELL_CLB', 'stiff/fric', .true.), &
+    law_spec_t('VISCO_ELASTIC_REPELL_CLB', 'stiff etan/fric', .true.), &
+    law_spec_t('IQS_WET_DS_CLB', 'cohn coht/wethk/dfric sfric', .false.), &
+    law_spec_t('MAC_CZM', 'dfric sfric/cn ct/visco w', .true.), &
+    law_spec_t('IQS_MAC_CZM', 'dfric sfric/cn ct/visco w', .true.), &
+    law_spec_t('MP_CZM', 'dfric sfric/cn ct/w', .false.), &
+    law_spec_t('MP3_CZM', 'dfric sfric/cn ct/smax w', .true.), &
+    law_spec_t('MAL_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2', .true.), &
+    law_spec_t('IQS_MAL_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2', .true.), &
+    law_spec_t('TH_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/dp1 dp2', .true.), &
+    law_spec_t('IQS_TH_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/dp1 dp2', .true.), &
+    law_spec_t('EXPO_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/eta', .true.), &
+    law_spec_t('IQS_EXPO_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/eta', .true.), &
+    law_spec_t('ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi', .false.), &
+    law_spec_t('IQS_ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi', .false.), &
+    law_spec_t('IQS_STICK', '', .false.), &
+    law_spec_t('COUPLED_DOF', '', .true.), &
+    law_spec_t('GAP_SGR_STICK', '', .false.), &
+    law_spec_t('ER_MAC_CZM', 'dfric sfric/cn ct/visco w', .false.), &
+    law_spec_t('postGAP_IQS_MAC_CZM', 'dfric sfric/cn ct/visco w', .false.)]
 
   integer, parameter :: max_lines = 8
 
 contains
 
-  !> Comma separated names of the supported laws.
-  function known_laws() result(s)
+  !> Comma separated names of the laws read (with solver: those the solver runs).
+  function known_laws(solver) result(s)
+    logical, intent(in), optional :: solver
     character(len=:), allocatable :: s
     integer :: k
+    logical :: only_solver
+    only_solver = .false.
+    if (present(solver)) only_solver = solver
     s = ''
     do k = 1, n_specs
-      if (k > 1) s = s//', '
+      if (only_solver .and. .not. specs(k)%solver) cycle
+      if (len(s) > 0) s = s//', '
       s = s//trim(specs(k)%name)
     end do
   end function known_laws

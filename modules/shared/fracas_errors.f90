@@ -8,6 +8,7 @@ module fracas_errors
   private
   public :: fatal, input_error, warn, set_cleanup, cleanup_proc, stop_run, itoa, error_exit_running, &
             set_error_context, last_error
+  public :: status_t, raise, failed
   public :: exit_error, exit_unconverged
 
   !> Exit statuses of the programs (documented in fracas --help and doc/):
@@ -17,6 +18,16 @@ module fracas_errors
   !> Fortran run-time library, which uses it for its own errors.)
   integer, parameter :: exit_error = 1, exit_unconverged = 3
 
+  !> The outcome of a library routine that can fail at run time (a factorization,
+  !> a solve): the caller decides what a failure means (stop the run with a
+  !> message naming the body, try something else, hand it to Python or to
+  !> another rank). Routines taking an optional status stop the run as before
+  !> when the caller passes none (raise).
+  type :: status_t
+    logical :: ok = .true.
+    character(len=:), allocatable :: message   !< what failed (set when not ok)
+  end type status_t
+
   abstract interface
     subroutine cleanup_proc()
     end subroutine cleanup_proc
@@ -25,9 +36,9 @@ module fracas_errors
   procedure(cleanup_proc), pointer :: cleanup => null()
   logical :: in_cleanup = .false.
   !> What the program is doing, prefixed to the messages of fatal and stop_run:
-  !> the step ('step N (t=...)', set by the driver around each step) and the
-  !> object (e.g. 'MAILx body 3', set around a factorization). '' when none.
-  character(len=:), allocatable :: step_context, object_context
+  !> the step ('step N (t=...)', set by the driver around each step; '' when
+  !> none). The object that failed is named by the message (see status_t).
+  character(len=:), allocatable :: step_context
   !> The message of the error being reported (fracas.h5's end_reason).
   character(len=:), allocatable :: last_message
 
@@ -45,11 +56,28 @@ contains
     call stop_run(message, exit_error)
   end subroutine fatal
 
-  !> Set the step and/or object context of error messages ('' clears it).
-  subroutine set_error_context(step, object)
-    character(len=*), intent(in), optional :: step, object
-    if (present(step)) step_context = step
-    if (present(object)) object_context = object
+  !> A failure of a routine that takes an optional status: recorded in status
+  !> when the caller passed one, else the run stops with the message (fatal).
+  subroutine raise(status, message)
+    type(status_t), intent(inout), optional :: status
+    character(len=*), intent(in) :: message
+    if (.not. present(status)) call fatal(message)
+    status%ok = .false.
+    status%message = message
+  end subroutine raise
+
+  !> Has a routine reported a failure in status? (Without a status a failure
+  !> has stopped the run, so an absent status never holds one.)
+  pure logical function failed(status)
+    type(status_t), intent(in), optional :: status
+    failed = .false.
+    if (present(status)) failed = .not. status%ok
+  end function failed
+
+  !> Set the step context of error messages ('' clears it).
+  subroutine set_error_context(step)
+    character(len=*), intent(in) :: step
+    step_context = step
   end subroutine set_error_context
 
   !> The message of the error being reported ('' before any).
@@ -59,15 +87,12 @@ contains
     if (allocated(last_message)) s = last_message
   end function last_error
 
-  !> MESSAGE with its context: 'step N (t=...): MAILx body 3: message' (the step
-  !> left out when the message names it already).
+  !> MESSAGE with its context: 'step N (t=...): message' (the step left out when
+  !> the message names it already).
   function in_context(message) result(s)
     character(len=*), intent(in) :: message
     character(len=:), allocatable :: s
     s = trim(message)
-    if (allocated(object_context)) then
-      if (len(object_context) > 0) s = object_context//': '//s
-    end if
     if (allocated(step_context)) then
       if (len(step_context) > 0 .and. index(s, 'step ') /= 1) s = step_context//': '//s
     end if

@@ -34,7 +34,7 @@ module fracas_linear_solver
   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, c_double, c_char, &
                                          c_null_char
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, warn, itoa
+  use fracas_errors, only: fatal, warn, itoa, status_t, raise
   use fracas_sparse, only: sparse_t, sparse_to_dense, sparse_asymmetry
   implicit none
   private
@@ -161,11 +161,13 @@ module fracas_linear_solver
 contains
 
   !> Factorize a with the given method (see the module header). f is freed first.
-  subroutine factor_build(f, a, method, ordering)
+  !> A matrix the method cannot factorize: status (see fracas_errors), or the run stops.
+  subroutine factor_build(f, a, method, ordering, status)
     type(factor_t), intent(inout) :: f
     type(sparse_t), intent(in) :: a
     character(len=*), intent(in) :: method
     character(len=*), intent(in), optional :: ordering
+    type(status_t), intent(out), optional :: status
     character(len=:), allocatable :: why
 
     call factor_free(f)
@@ -182,77 +184,78 @@ contains
     end if
     f%auto = method == 'auto'
 
+    why = ''
     select case (method)
     case ('dense')
       call dense_cholesky(f, a, why)
-      if (len(why) > 0) call fatal('factor_build: '//why)
     case ('cholmod')
       call sparse_factor(f, a, fss_cholmod, why)
-      if (len(why) > 0) call fatal('factor_build: '//why)
     case ('umfpack')
       call sparse_factor(f, a, fss_umfpack, why)
-      if (len(why) > 0) call fatal('factor_build: '//why)
     case ('auto')
-      call auto_factor(f, a, 'factor_build')
+      call auto_factor(f, a, why)
     case default
       call fatal("factor_build: unknown method '"//method//"' (expected auto, dense, cholmod or umfpack)")
     end select
+    if (len(why) > 0) call raise(status, 'factor_build: '//why)
   end subroutine factor_build
 
   !> New values of a on the pattern f was built with: numeric refactorization only (the
-  !> ordering and symbolic analysis are kept).
-  subroutine factor_update(f, a)
+  !> ordering and symbolic analysis are kept). A failure: status, or the run stops.
+  subroutine factor_update(f, a, status)
     type(factor_t), intent(inout) :: f
     type(sparse_t), intent(in) :: a
+    type(status_t), intent(out), optional :: status
     character(len=:), allocatable :: why
-    integer(c_int) :: status
+    integer(c_int) :: fss_status
 
     if (f%kind == kind_none) call fatal('factor_update: the factor was never built (call factor_build first)')
     if (a%n /= f%n) call fatal('factor_update: matrix of size '//itoa(a%n)//' for a factor of size '//itoa(f%n))
     if (f%auto .and. (f%kind == kind_dense_cholesky .or. f%kind == kind_cholmod)) then
       if (sparse_asymmetry(a) > symmetry_tolerance) then
-        call auto_factor(f, a, 'factor_update')
+        call auto_factor(f, a, why)
+        if (len(why) > 0) call raise(status, 'factor_update: '//why)
         return
       end if
     end if
+    why = ''
     select case (f%kind)
     case (kind_dense_cholesky)
       call dense_cholesky(f, a, why)
-      if (len(why) > 0) then
-        if (.not. f%auto) call fatal('factor_update: '//why)
+      if (len(why) > 0 .and. f%auto) then
         call report_fallback(why, 'LAPACK dgetrf (dense LU)')
         call dense_lu(f, a, why)
-        if (len(why) > 0) call fatal('factor_update: '//why)
       end if
     case (kind_dense_lu)
       call dense_lu(f, a, why)
-      if (len(why) > 0) call fatal('factor_update: '//why)
     case (kind_cholmod, kind_umfpack)
-      status = fss_factor(f%handle, a%colptr, a%rowind, a%val)
-      if (status == fss_ok) return
-      why = sparse_failure(f, status)
-      if (status == fss_not_posdef .and. f%auto) then
+      fss_status = fss_factor(f%handle, a%colptr, a%rowind, a%val)
+      if (fss_status == fss_ok) return
+      why = sparse_failure(f, fss_status)
+      if (fss_status == fss_not_posdef .and. f%auto) then
         call report_fallback(why, 'UMFPACK LU')
         call sparse_factor(f, a, fss_umfpack, why)
       end if
-      if (len(why) > 0) call fatal('factor_update: '//why)
     end select
+    if (len(why) > 0) call raise(status, 'factor_update: '//why)
   end subroutine factor_update
 
-  !> b := A^-1 b for one right-hand side.
-  subroutine factor_solve_1(f, b)
+  !> b := A^-1 b for one right-hand side. A failure: status, or the run stops.
+  subroutine factor_solve_1(f, b, status)
     type(factor_t), intent(inout) :: f
     real(wp), intent(inout), contiguous :: b(:)
+    type(status_t), intent(out), optional :: status
     call check_rhs(f, size(b))
-    call solve_columns(f, b, 1)
+    call solve_columns(f, b, 1, status)
   end subroutine factor_solve_1
 
-  !> b := A^-1 b for the columns of b(n, nrhs).
-  subroutine factor_solve_n(f, b)
+  !> b := A^-1 b for the columns of b(n, nrhs). A failure: status, or the run stops.
+  subroutine factor_solve_n(f, b, status)
     type(factor_t), intent(inout) :: f
     real(wp), intent(inout), contiguous :: b(:, :)
+    type(status_t), intent(out), optional :: status
     call check_rhs(f, size(b, 1))
-    call solve_columns(f, b, size(b, 2))
+    call solve_columns(f, b, size(b, 2), status)
   end subroutine factor_solve_n
 
   subroutine check_rhs(f, n)
@@ -263,23 +266,23 @@ contains
   end subroutine check_rhs
 
   !> The solve itself on nrhs contiguous columns (one or several, by sequence association).
-  subroutine solve_columns(f, b, nrhs)
+  subroutine solve_columns(f, b, nrhs, status)
     type(factor_t), intent(inout) :: f
     integer, intent(in) :: nrhs
     real(wp), intent(inout) :: b(f%n, nrhs)
+    type(status_t), intent(inout), optional :: status
     integer :: info
-    integer(c_int) :: status
     if (f%n == 0 .or. nrhs == 0) return
     select case (f%kind)
     case (kind_dense_cholesky)
       call dpotrs('U', f%n, nrhs, f%dense, f%n, b, f%n, info)
-      if (info /= 0) call fatal('factor_solve: LAPACK dpotrs failed (info '//itoa(info)//')')
+      if (info /= 0) call raise(status, 'factor_solve: LAPACK dpotrs failed (info '//itoa(info)//')')
     case (kind_dense_lu)
       call dgetrs('N', f%n, nrhs, f%dense, f%n, f%ipiv, b, f%n, info)
-      if (info /= 0) call fatal('factor_solve: LAPACK dgetrs failed (info '//itoa(info)//')')
+      if (info /= 0) call raise(status, 'factor_solve: LAPACK dgetrs failed (info '//itoa(info)//')')
     case (kind_cholmod, kind_umfpack)
-      status = fss_solve(f%handle, b, int(f%n, c_int), int(nrhs, c_int))
-      if (status /= fss_ok) call fatal('factor_solve: '//c_text(f%handle, .false.))
+      if (fss_solve(f%handle, b, int(f%n, c_int), int(nrhs, c_int)) /= fss_ok) &
+        call raise(status, 'factor_solve: '//c_text(f%handle, .false.))
     end select
   end subroutine solve_columns
 
@@ -327,29 +330,25 @@ contains
   end subroutine factor_free
 
   !> c := c^-1 for a small symmetric positive definite matrix (both triangles returned).
-  !> Without ok, a matrix that is not positive definite stops the run; with ok, ok is
-  !> false, c is left undefined and minor (if present) is the order of the first
-  !> leading minor that is not positive (0 if the inversion failed after it).
-  subroutine dense_spd_inverse(c, ok, minor)
+  !> A matrix that is not positive definite: status (c is then left undefined and
+  !> minor, if present, is the order of the first leading minor that is not
+  !> positive, 0 if the inversion failed after it), or the run stops.
+  subroutine dense_spd_inverse(c, status, minor)
     real(wp), intent(inout) :: c(:, :)
-    logical, intent(out), optional :: ok
+    type(status_t), intent(out), optional :: status
     integer, intent(out), optional :: minor
     integer :: n, info, j
     n = size(c, 1)
     if (size(c, 2) /= n) call fatal('dense_spd_inverse: matrix is '//itoa(n)//' x '//itoa(size(c, 2))//', not square')
-    if (present(ok)) ok = .true.
     if (present(minor)) minor = 0
     if (n == 0) return
     call dpotrf('U', n, c, n, info)
     if (info > 0 .and. present(minor)) minor = info
     if (info == 0) call dpotri('U', n, c, n, info)
     if (info /= 0) then
-      if (present(ok)) then
-        ok = .false.
-        return
-      end if
-      call fatal('dense_spd_inverse: LAPACK dpotrf: matrix not positive definite (leading minor '// &
+      call raise(status, 'dense_spd_inverse: LAPACK dpotrf: matrix not positive definite (leading minor '// &
                  itoa(info)//' of '//itoa(n)//')')
+      return
     end if
     do j = 1, n - 1
       c(j + 1:n, j) = c(j, j + 1:n)
@@ -358,12 +357,12 @@ contains
 
   ! ---------------------------------------------------------------------------------------
 
-  !> 'auto': dense or CHOLMOD by size, LU when not symmetric or Cholesky fails.
-  subroutine auto_factor(f, a, caller)
+  !> 'auto': dense or CHOLMOD by size, LU when not symmetric or Cholesky fails; why
+  !> is empty on success, else names the failure of the last method tried.
+  subroutine auto_factor(f, a, why)
     type(factor_t), intent(inout) :: f
     type(sparse_t), intent(in) :: a
-    character(len=*), intent(in) :: caller
-    character(len=:), allocatable :: why
+    character(len=:), allocatable, intent(out) :: why
     real(wp) :: asym
     logical :: small
     integer(c_int) :: ordering
@@ -394,7 +393,6 @@ contains
     else
       call sparse_factor(f, a, fss_umfpack, why)
     end if
-    if (len(why) > 0) call fatal(caller//': '//why)
   end subroutine auto_factor
 
   !> Dense Cholesky of a into f; why is empty on success, else names the failure.
@@ -452,9 +450,12 @@ contains
     if (allocated(f%ipiv)) deallocate (f%ipiv)
     f%kind = merge(kind_cholmod, kind_umfpack, which == fss_cholmod)
     f%handle = fss_create(which, int(a%n, c_int), a%colptr, a%rowind, a%val, f%ordering, status)
-    if (.not. c_associated(f%handle)) call fatal('factor_build: out of memory for a sparse factor')
-    if (status == fss_ok) status = fss_factor(f%handle, a%colptr, a%rowind, a%val)
     why = ''
+    if (.not. c_associated(f%handle)) then
+      why = 'out of memory for a sparse factor'
+      return
+    end if
+    if (status == fss_ok) status = fss_factor(f%handle, a%colptr, a%rowind, a%val)
     if (status /= fss_ok) why = sparse_failure(f, status)
   end subroutine sparse_factor
 

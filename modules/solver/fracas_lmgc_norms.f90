@@ -8,7 +8,7 @@ module fracas_lmgc_norms
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: lmgc_norms_t, lmgc_norms
+  public :: lmgc_norms_t, lmgc_norms, lmgc_add_sums
 
   !> The normalised errors of a check sweep (each < 1 means converged).
   type :: lmgc_norms_t
@@ -18,6 +18,8 @@ module fracas_lmgc_norms
   end type lmgc_norms_t
 
 contains
+
+  include 'lmgc_sums.inc'
 
   !> LMGC90's verdict on one check sweep. sums as the sweep kernels accumulate
   !> them over contacts (du = W (r_old - r_new), rbar the mean reaction):

@@ -25,6 +25,7 @@ module fracas_nlgs
                         czm_beta_power
   use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
   use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
+  use fracas_grow, only: grow
   implicit none
   private
   public :: nlgs_settings_t, nlgs_report_t, nlgs_t, nlgs_init, nlgs_prepare, nlgs_solve, &
@@ -107,6 +108,13 @@ module fracas_nlgs
 
 contains
 
+  ! The body models' contact sides, included (as in fracas_local_solver) so that the
+  ! per-contact loops here inline them: contact_velocity runs for every contact
+  ! twice per solve, and out of line it cost 2 % of deposit_1000's solve time.
+  include '../shared/frame_2d.inc'
+  include '../bodies/rbdy2_side.inc'
+  include '../bodies/mailx_side.inc'
+
   subroutine nlgs_init(solver, settings)
     type(nlgs_t), intent(out) :: solver
     type(nlgs_settings_t), intent(in) :: settings
@@ -120,24 +128,20 @@ contains
     type(contacts_t), intent(in) :: c
     integer, intent(in) :: k
     real(wp), intent(in) :: v(:, :), vm(:, :)
-    real(wp) :: u(2), dv(2), rot_cd(2), rot_an(2)
-    integer :: a, b
-    a = c%cdb(k); b = c%anb(k)
-    rot_cd = 0.0_wp; rot_an = 0.0_wp
+    real(wp) :: u(2), dv(2)
     if (c%cdm(k) == bm_rigid) then
-      dv = v(1:2, a)
-      rot_cd = [v(3, a) * c%lever(1, k), v(3, a) * c%lever(2, k)]
+      dv = v(1:2, c%cdb(k))
     else
-      dv = c%mwt(1, k) * vm(:, c%mnode(1, k)) + c%mwt(2, k) * vm(:, c%mnode(2, k))
+      dv = mesh2_point_velocity(vm(:, c%mnode(1, k)), vm(:, c%mnode(2, k)), c%mwt(1, k), c%mwt(2, k))
     end if
     if (c%anm(k) == bm_rigid) then
-      dv = dv - v(1:2, b)
-      rot_an = [v(3, b) * c%lever(3, k), v(3, b) * c%lever(4, k)]
+      dv = dv - v(1:2, c%anb(k))
     else
-      dv = dv - (c%mwt(3, k) * vm(:, c%mnode(3, k)) + c%mwt(4, k) * vm(:, c%mnode(4, k)))
+      dv = dv - mesh2_point_velocity(vm(:, c%mnode(3, k)), vm(:, c%mnode(4, k)), c%mwt(3, k), c%mwt(4, k))
     end if
-    u(1) = dv(1) * c%normal(2, k) - dv(2) * c%normal(1, k) + rot_cd(1) - rot_an(1)
-    u(2) = dv(1) * c%normal(1, k) + dv(2) * c%normal(2, k) + rot_cd(2) - rot_an(2)
+    call frame2_local(c%normal(1, k), c%normal(2, k), dv(1), dv(2), u(1), u(2))
+    if (c%cdm(k) == bm_rigid) call rigid2_add_spin(1.0_wp, v(3, c%cdb(k)), c%lever(1, k), c%lever(2, k), u(1), u(2))
+    if (c%anm(k) == bm_rigid) call rigid2_add_spin(-1.0_wp, v(3, c%anb(k)), c%lever(3, k), c%lever(4, k), u(1), u(2))
   end function contact_velocity
 
   !> Component i (1: t, 2: n) of the cohesive impulse a + K u~ of contact k at
@@ -219,7 +223,7 @@ contains
     type(law_t), intent(in) :: laws(:)
     real(wp), intent(in) :: h
     integer :: k, a, o
-    real(wp) :: ht(3), hn(3), gt(3), gn(3), weff(4), coh(coh_size), internals(5)
+    real(wp) :: weff(4), coh(coh_size), internals(5)
     logical :: active, cohesive, solvable
     if (c%with_mesh) call mesh_blocks(solver, c, m)
     if (.not. allocated(solver%cz)) solver%cz = laws%czm
@@ -227,20 +231,10 @@ contains
     do k = 1, c%n
       a = c%cdb(k); o = c%anb(k)
       c%w(:, k) = 0.0_wp
-      if (c%cdm(k) == bm_rigid) then
-        ht = [c%normal(2, k), -c%normal(1, k), c%lever(1, k)]
-        hn = [c%normal(1, k), c%normal(2, k), c%lever(2, k)]
-        c%w(1, k) = sum(b%inv_mass(:, a) * ht * ht)
-        c%w(2, k) = sum(b%inv_mass(:, a) * ht * hn)
-        c%w(4, k) = sum(b%inv_mass(:, a) * hn * hn)
-      end if
-      if (c%anm(k) == bm_rigid) then
-        gt = [c%normal(2, k), -c%normal(1, k), c%lever(3, k)]
-        gn = [c%normal(1, k), c%normal(2, k), c%lever(4, k)]
-        c%w(1, k) = c%w(1, k) + sum(b%inv_mass(:, o) * gt * gt)
-        c%w(2, k) = c%w(2, k) + sum(b%inv_mass(:, o) * gt * gn)
-        c%w(4, k) = c%w(4, k) + sum(b%inv_mass(:, o) * gn * gn)
-      end if
+      if (c%cdm(k) == bm_rigid) call rigid2_add_delassus(b%inv_mass(:, a), c%normal(1, k), c%normal(2, k), &
+                                                         c%lever(1, k), c%lever(2, k), c%w(:, k))
+      if (c%anm(k) == bm_rigid) call rigid2_add_delassus(b%inv_mass(:, o), c%normal(1, k), c%normal(2, k), &
+                                                         c%lever(3, k), c%lever(4, k), c%w(:, k))
       c%w(3, k) = c%w(2, k)
       if (c%cdm(k) == bm_mesh .or. c%anm(k) == bm_mesh) call add_mesh_block(k)
       ! A nearly rigid tangential direction would make the stick test ill-posed.
@@ -271,7 +265,7 @@ contains
     !> same body (both, for a contact of a body with itself).
     subroutine add_mesh_block(k)
       integer, intent(in) :: k
-      integer :: s, s2, i, j, mb, g0, sl
+      integer :: s, s2, i, mb, g0, sl
       real(wp) :: t(2), nrm(2), sgn, ht_g(2), hn_g(2), wgt
       nrm = c%normal(:, k)
       t = [nrm(2), -nrm(1)]
@@ -287,12 +281,8 @@ contains
           do i = 2 * s - 1, 2 * s
             wgt = sgn * c%mwt(i, k)
             sl = 2 * solver%aslot(c%mnode(i, k)) - 1
-            do j = 1, 2
-              ht_g(j) = ht_g(j) + wgt * (t(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
-                                         t(2) * solver%gmat(g0 + 2 * sl + j))
-              hn_g(j) = hn_g(j) + wgt * (nrm(1) * solver%gmat(g0 + 2 * sl - 2 + j) + &
-                                         nrm(2) * solver%gmat(g0 + 2 * sl + j))
-            end do
+            call mesh2_add_hg(wgt, t, nrm, solver%gmat(g0 + 2 * sl - 1:g0 + 2 * sl), &
+                              solver%gmat(g0 + 2 * sl + 1:g0 + 2 * sl + 2), ht_g, hn_g)
           end do
           c%w(1, k) = c%w(1, k) + ht_g(1)
           c%w(2, k) = c%w(2, k) + ht_g(2)
@@ -338,13 +328,9 @@ contains
     call mailx_require_compliance(m, nodes(1:nnod))
     ! Active nodes per body (see nlgs_t), those of the last call cleared first.
     call clear_active(solver)
-    if (allocated(solver%aslot)) then
-      if (size(solver%aslot) /= m%nnodes) deallocate (solver%aslot, solver%nact, solver%abase)
-    end if
-    if (.not. allocated(solver%aslot)) then
-      allocate (solver%aslot(m%nnodes), solver%nact(m%n), solver%abase(m%n))
-      solver%aslot = 0
-    end if
+    call grow(solver%aslot, m%nnodes, fill=0)
+    call grow(solver%nact, m%n)
+    call grow(solver%abase, m%n)
     solver%nact = 0
     do k = 1, nnod
       b = m%node_body(nodes(k))
@@ -360,10 +346,7 @@ contains
       solver%abase(b) = na
       na = na + solver%nact(b)
     end do
-    if (allocated(solver%anodes)) then
-      if (size(solver%anodes) < na) deallocate (solver%anodes)
-    end if
-    if (.not. allocated(solver%anodes)) allocate (solver%anodes(max(na, 16)))
+    call grow(solver%anodes, na)
     solver%nact = 0
     do k = 1, nnod
       node = nodes(k)
@@ -382,10 +365,8 @@ contains
         solver%aslot(node) = solver%nact(b)
       end if
     end do
-    if (allocated(solver%goff)) then
-      if (size(solver%goff, 2) < c%n) deallocate (solver%goff, solver%gm)
-    end if
-    if (.not. allocated(solver%goff)) allocate (solver%goff(2, max(c%n, 16)), solver%gm(2, max(c%n, 16)))
+    call grow(solver%goff, 2, c%n)
+    call grow(solver%gm, 2, c%n)
     total = 0
     do k = 1, c%n
       do s = 1, 2
@@ -397,10 +378,7 @@ contains
         total = total + 2 * solver%gm(s, k)
       end do
     end do
-    if (allocated(solver%gmat)) then
-      if (size(solver%gmat) < total) deallocate (solver%gmat)
-    end if
-    if (.not. allocated(solver%gmat)) allocate (solver%gmat(max(total, 16)))
+    call grow(solver%gmat, total)
     do k = 1, c%n
       nrm = c%normal(:, k)
       t = [nrm(2), -nrm(1)]
@@ -423,10 +401,8 @@ contains
           ! rows of the active nodes; (G_t, G_n) interleaved, as the mesh kernel reads them
           do j = 1, solver%nact(b)
             associate (r1 => 2 * m%cslot(solver%anodes(solver%abase(b) + j)) - 1, q => g0 + 4 * j - 4)
-              solver%gmat(q + 1) = solver%gmat(q + 1) + wgt * (t(1) * cols(r1, 1) + t(2) * cols(r1, 2))
-              solver%gmat(q + 2) = solver%gmat(q + 2) + wgt * (nrm(1) * cols(r1, 1) + nrm(2) * cols(r1, 2))
-              solver%gmat(q + 3) = solver%gmat(q + 3) + wgt * (t(1) * cols(r1 + 1, 1) + t(2) * cols(r1 + 1, 2))
-              solver%gmat(q + 4) = solver%gmat(q + 4) + wgt * (nrm(1) * cols(r1 + 1, 1) + nrm(2) * cols(r1 + 1, 2))
+              call mesh2_add_g(wgt, t, nrm, cols(r1, 1), cols(r1, 2), cols(r1 + 1, 1), cols(r1 + 1, 2), &
+                               solver%gmat(q + 1:q + 4))
             end associate
           end do
         end do
@@ -590,22 +566,17 @@ contains
     n = c%n
     diverged = .false.
     report%sweeps = 0
-    if (allocated(solver%order)) then
-      if (size(solver%order) < n) deallocate (solver%order, solver%qfree, solver%pidx, solver%pc, solver%pb, &
-                                              solver%pcoh, solver%pr, solver%pst)
-    end if
-    if (.not. allocated(solver%order)) then
-      k = max(n, 16)
-      allocate (solver%order(k), solver%qfree(2, k), solver%pidx(k), solver%pc(pk_size, k), solver%pb(2, k), &
-                solver%pcoh(k), solver%pr(2, k), solver%pst(k))
-    end if
-    if (allocated(solver%bslot)) then
-      if (size(solver%bslot) /= b%n) deallocate (solver%bslot, solver%blist, solver%bv)
-    end if
-    if (.not. allocated(solver%bslot)) then
-      allocate (solver%bslot(b%n), solver%blist(b%n), solver%bv(6, max(b%n, 1)))
-      solver%bslot = 0
-    end if
+    call grow(solver%order, n)
+    call grow(solver%qfree, 2, n)
+    call grow(solver%pidx, n)
+    call grow(solver%pc, pk_size, n)
+    call grow(solver%pb, 2, n)
+    call grow(solver%pcoh, n)
+    call grow(solver%pr, 2, n)
+    call grow(solver%pst, n)
+    call grow(solver%bslot, b%n, fill=0)     ! kept zero between steps (unpack_bodies)
+    call grow(solver%blist, b%n)
+    call grow(solver%bv, 6, b%n)
     do k = 1, n
       solver%qfree(:, k) = contact_velocity(c, k, b%v, m%vfree) + c%shift(:, k)
       if (c%active(k) .and. c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) call inject(k, c%r(1, k), c%r(2, k))
@@ -710,14 +681,13 @@ contains
       integer, intent(in) :: k
       real(wp), intent(in) :: dt, dn
       integer :: a, o
-      real(wp) :: p(2)
+      real(wp) :: px, py
       a = c%cdb(k); o = c%anb(k)
-      p(1) = dt * c%normal(2, k) + dn * c%normal(1, k)
-      p(2) = -dt * c%normal(1, k) + dn * c%normal(2, k)
-      b%v(1:2, a) = b%v(1:2, a) + b%inv_mass(1:2, a) * p
-      b%v(3, a) = b%v(3, a) + b%inv_mass(3, a) * (dt * c%lever(1, k) + dn * c%lever(2, k))
-      b%v(1:2, o) = b%v(1:2, o) - b%inv_mass(1:2, o) * p
-      b%v(3, o) = b%v(3, o) - b%inv_mass(3, o) * (dt * c%lever(3, k) + dn * c%lever(4, k))
+      call frame2_global(c%normal(1, k), c%normal(2, k), dt, dn, px, py)
+      call rigid2_add_impulse(b%v(:, a), b%inv_mass(:, a), 1.0_wp, px, py, &
+                              rigid2_moment(dt, dn, c%lever(1, k), c%lever(2, k)))
+      call rigid2_add_impulse(b%v(:, o), b%inv_mass(:, o), -1.0_wp, px, py, &
+                              rigid2_moment(dt, dn, c%lever(3, k), c%lever(4, k)))
     end subroutine inject
 
     !> Coloured order: the active contacts in stored order, cut in blocks of
@@ -886,11 +856,8 @@ contains
     !> that active contacts touch, then the warm-start impulses of the contacts
     !> with a meshed side, on both their sides.
     subroutine pack_meshes()
-      integer :: k, sd, bm, total, j, i, mb, g0, v0
-      if (allocated(solver%moff)) then
-        if (size(solver%moff) /= m%n) deallocate (solver%moff)
-      end if
-      if (.not. allocated(solver%moff)) allocate (solver%moff(m%n))
+      integer :: k, sd, bm, total, j
+      call grow(solver%moff, m%n)
       solver%moff = -1
       total = 0
       do k = 1, n
@@ -903,26 +870,23 @@ contains
           total = total + solver%gm(sd, k)
         end do
       end do
-      if (allocated(solver%mv)) then
-        if (size(solver%mv) < total) deallocate (solver%mv)
-      end if
-      if (.not. allocated(solver%mv)) allocate (solver%mv(max(total, 16)))
+      call grow(solver%mv, total)
       do bm = 1, m%n
         if (solver%moff(bm) < 0) cycle
         do j = 1, solver%nact(bm)
           solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, solver%anodes(solver%abase(bm) + j))
         end do
       end do
-      k = n
-      if (allocated(solver%gidx)) then
-        if (size(solver%gidx) < n) deallocate (solver%gidx, solver%gside, solver%ggm, solver%gfirst, solver%gslot, &
-                                               solver%gcoh, solver%gst, solver%gc, solver%gwt, solver%gr)
-      end if
-      if (.not. allocated(solver%gidx)) then
-        k = max(n, 16)
-        allocate (solver%gidx(k), solver%gside(4, k), solver%ggm(2, k), solver%gfirst(2, k), solver%gslot(4, k), &
-                  solver%gcoh(k), solver%gst(k), solver%gc(pk_size, k), solver%gwt(4, k), solver%gr(2, k))
-      end if
+      call grow(solver%gidx, n)
+      call grow(solver%gside, 4, n)
+      call grow(solver%ggm, 2, n)
+      call grow(solver%gfirst, 2, n)
+      call grow(solver%gslot, 4, n)
+      call grow(solver%gcoh, n)
+      call grow(solver%gst, n)
+      call grow(solver%gc, pk_size, n)
+      call grow(solver%gwt, 4, n)
+      call grow(solver%gr, 2, n)
       ! Warm start of the contacts with a meshed side.
       do k = 1, n
         if (.not. c%active(k)) cycle
@@ -932,13 +896,8 @@ contains
           if (side_model(c, k, sd) == bm_rigid) then
             call inject_rigid_side(k, sd, c%r(1, k), c%r(2, k))
           else
-            mb = solver%gm(sd, k)
-            g0 = solver%goff(sd, k)
-            v0 = solver%moff(side_body(c, k, sd))
-            do i = 1, mb
-              solver%mv(v0 + i) = solver%mv(v0 + i) + solver%gmat(g0 + 2 * i - 1) * c%r(1, k) + &
-                                  solver%gmat(g0 + 2 * i) * c%r(2, k)
-            end do
+            call mesh2_add_impulse(solver%mv, solver%gmat, solver%goff(sd, k), solver%moff(side_body(c, k, sd)), &
+                                   solver%gm(sd, k), c%r(1, k), c%r(2, k))
           end if
         end do
       end do
@@ -948,15 +907,8 @@ contains
     subroutine inject_rigid_side(k, sd, dt, dn)
       integer, intent(in) :: k, sd
       real(wp), intent(in) :: dt, dn
-      integer :: a
-      real(wp) :: p(2), sgn
-      a = solver%bslot(side_body(c, k, sd))
-      sgn = merge(1.0_wp, -1.0_wp, sd == 1)
-      p(1) = dt * c%normal(2, k) + dn * c%normal(1, k)
-      p(2) = -dt * c%normal(1, k) + dn * c%normal(2, k)
-      solver%bv(1:2, a) = solver%bv(1:2, a) + sgn * solver%bv(4:5, a) * p
-      solver%bv(3, a) = solver%bv(3, a) + sgn * solver%bv(6, a) * &
-                        (dt * c%lever(2 * sd - 1, k) + dn * c%lever(2 * sd, k))
+      call rigid2_side_impulse(solver%bv(:, solver%bslot(side_body(c, k, sd))), merge(1.0_wp, -1.0_wp, sd == 1), &
+                               c%normal(1, k), c%normal(2, k), c%lever(2 * sd - 1:2 * sd, k), dt, dn)
     end subroutine inject_rigid_side
 
     !> Velocities of the meshed bodies from the contact impulses on their nodes.
@@ -968,13 +920,12 @@ contains
       imp = 0.0_wp
       do k = 1, n
         if (.not. c%active(k)) cycle
-        p(1) = c%r(1, k) * c%normal(2, k) + c%r(2, k) * c%normal(1, k)
-        p(2) = -c%r(1, k) * c%normal(1, k) + c%r(2, k) * c%normal(2, k)
+        call frame2_global(c%normal(1, k), c%normal(2, k), c%r(1, k), c%r(2, k), p(1), p(2))
         do sd = 1, 2
           if (side_model(c, k, sd) /= bm_mesh) cycle
           sgn = merge(1.0_wp, -1.0_wp, sd == 1)
           do i = 2 * sd - 1, 2 * sd
-            imp(:, c%mnode(i, k)) = imp(:, c%mnode(i, k)) + sgn * c%mwt(i, k) * p
+            call mesh2_add_node(sgn * c%mwt(i, k), p(1), p(2), imp(1, c%mnode(i, k)), imp(2, c%mnode(i, k)))
           end do
         end do
       end do

@@ -5,13 +5,14 @@
 module fracas_scene
   use fracas_kinds, only: wp, i8
   use fracas_deck, only: deck_t, body_input_t
-  use fracas_errors, only: input_error
+  use fracas_errors, only: input_error, status_t, failed
   use fracas_ids, only: inter_id, status_id, bm_rigid, bm_mesh
-  use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drive, rbdy2_begin_step, &
+  use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_add_step_work, rbdy2_begin_step, &
                           rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
-  use fracas_drives, only: drive_value
+  use fracas_frame_2d, only: frame2_global
+  use fracas_rbdy2_side, only: rigid2_add_impulse, rigid2_moment
   use fracas_mailx, only: mailx_t, mailx_build, mailx_begin_step, mailx_detection_coor, mailx_converged, &
-                          mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint
+                          mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint, mailx_free
   use fracas_cracks, only: cracks_t, cracks_init, cracks_update
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
   use fracas_contact_laws, only: law_t, law_from_input, law_czm, law_iqs_clb_g0, law_coupled_dof
@@ -22,7 +23,7 @@ module fracas_scene
                          nlgs_update_cohesive
   implicit none
   private
-  public :: scene_t, step_report_t, scene_build, scene_step, scene_body_impulses
+  public :: scene_t, step_report_t, scene_build, scene_free, scene_step, scene_body_impulses
 
   real(wp), parameter :: pi = acos(-1.0_wp)
 
@@ -80,10 +81,9 @@ contains
   subroutine scene_build(deck, sc)
     type(deck_t), intent(in) :: deck
     type(scene_t), intent(out) :: sc
-    integer :: nb, ib, im, k, j, pos
+    integer :: nb, ib, im, k, j, pos, nv, nh
     integer, allocatable :: number(:), cd(:), an(:), sub(:), inter(:), status(:)
     real(wp), allocatable :: ref(:, :), mass(:), inertia(:), avrd(:), force(:, :), internals(:, :), points(:, :)
-    real(wp) :: rec_internals(n_internals)
     real(wp) :: density, area, polar, gyrd
     character(len=5), allocatable :: nick(:)
     type(nlgs_settings_t) :: ns
@@ -132,9 +132,7 @@ contains
     call rbdy2_init(sc%bodies, number, ref, mass, inertia, avrd, deck%gravity(1:2))
     ! LMGC90 starts a driven dof of a rigid body at its imposed value (lmgc90)
     sc%bodies%driven_start_imposed = deck%run%driven_start /= 'initial'
-    do k = 1, size(deck%driven)
-      if (deck%driven(k)%model /= 'MAILx') call rbdy2_add_drive(sc%bodies, deck%driven(k))
-    end do
+    call rbdy2_add_drives(sc%bodies, pack(deck%driven, deck%driven%model /= 'MAILx'))
     do k = 1, size(deck%dof_ini)
       associate (d => deck%dof_ini(k))
         if (d%model == 'MAILx') cycle
@@ -178,34 +176,39 @@ contains
     allocate (sc%q(3, nb))
 
     ! History from Vloc_Rloc.INI: contactors named by (body, rank in body).
-    allocate (cd(0), an(0), sub(0), inter(0), status(0), force(2, 0), internals(n_internals, 0), points(2, 0))
-    do k = 1, size(deck%vloc_ini)
+    nv = size(deck%vloc_ini)
+    allocate (cd(nv), an(nv), sub(nv), inter(nv), status(nv), force(2, nv), internals(n_internals, nv), &
+              points(2, nv))
+    nh = 0
+    do k = 1, nv
       associate (r => deck%vloc_ini(k))
         j = inter_id(r%inter)
         if (j == 0) cycle   ! a type this build does not treat: nothing to warm start
-        cd = [cd, tactor_of(r%cdbdy, r%icdbdy, r%icdtac)]
-        an = [an, tactor_of(r%anbdy, r%ianbdy, r%iantac)]
-        sub = [sub, r%cdver]
-        inter = [inter, j]
+        nh = nh + 1
+        cd(nh) = tactor_of(r%cdbdy, r%icdbdy, r%icdtac)
+        an(nh) = tactor_of(r%anbdy, r%ianbdy, r%iantac)
+        sub(nh) = r%cdver
+        inter(nh) = j
         pos = status_id(r%status)
         if (pos == 0) call input_error(r%src%file, r%src%line, 71, "unknown contact status '"//r%status//"'")
-        status = [status, pos]
-        force = reshape([force, [r%rlt, r%rln]], [2, size(cd)])
-        points = reshape([points, r%coor], [2, size(cd)])
-        rec_internals = 0.0_wp
+        status(nh) = pos
+        force(:, nh) = [r%rlt, r%rln]
+        points(:, nh) = r%coor
+        internals(:, nh) = 0.0_wp
         if (allocated(r%internals)) then
           pos = min(n_internals, size(r%internals))
-          rec_internals(1:pos) = r%internals(1:pos)
+          internals(1:pos, nh) = r%internals(1:pos)
         end if
-        internals = reshape([internals, rec_internals], [n_internals, size(cd)])
       end associate
     end do
     sc%contacts%with_cohesion = any(sc%laws%kind == law_czm .or. sc%laws%kind == law_iqs_clb_g0 .or. &
                                     sc%laws%kind == law_coupled_dof)
     if (sc%contacts%with_cohesion) then
-      call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, points, internals)
+      call history_build(sc%hist, sc%tactors%n, cd(1:nh), an(1:nh), sub(1:nh), inter(1:nh), status(1:nh), &
+                         force(:, 1:nh), points(:, 1:nh), internals(:, 1:nh))
     else
-      call history_build(sc%hist, sc%tactors%n, cd, an, sub, inter, status, force, points)
+      call history_build(sc%hist, sc%tactors%n, cd(1:nh), an(1:nh), sub(1:nh), inter(1:nh), status(1:nh), &
+                         force(:, 1:nh), points(:, 1:nh))
     end if
 
     ns%check = deck%run%nlgs_check
@@ -245,6 +248,12 @@ contains
     end function tactor_of
   end subroutine scene_build
 
+  !> What a scene holds outside Fortran's reach (the meshes' factorizations).
+  subroutine scene_free(sc)
+    type(scene_t), intent(inout) :: sc
+    call mailx_free(sc%meshes)
+  end subroutine scene_free
+
   !> A body whose node is given as (0, 0, 0) and whose contactors are all
   !> polygons has absolute vertices (as LMGC90 reads them): its node becomes the
   !> area centroid and the vertices are made relative to it.
@@ -270,14 +279,16 @@ contains
     end do
   end subroutine polygons_to_centroid
 
-  !> Advance the scene by one time step.
-  subroutine scene_step(sc, rep)
+  !> Advance the scene by one time step. A meshed body whose iteration matrix
+  !> does not factorize: status (the scene is then left mid-step), or the run stops.
+  subroutine scene_step(sc, rep, status)
     type(scene_t), intent(inout) :: sc
     type(step_report_t), intent(out) :: rep
+    type(status_t), intent(out), optional :: status
     integer :: k, pos, nover, checks, checks_left
     logical :: pair_known, swapped
     integer(i8) :: t0, t1, t2, rate
-    real(wp) :: margin, vmax, gap_end, dx(3), stored, coh_work, released, dissipated_all
+    real(wp) :: margin, vmax, gap_end, stored, coh_work, released, dissipated_all
     type(nlgs_report_t) :: newton_rep
     call system_clock(t0, rate)
     t1 = t0
@@ -285,7 +296,8 @@ contains
       call rbdy2_begin_step(b, sc%time, sc%h, sc%theta)
       call rbdy2_detection_coor(b, sc%h, sc%theta, sc%q)
       if (m%n > 0) then
-        call mailx_begin_step(m, sc%time)
+        call mailx_begin_step(m, sc%time, status)
+        if (failed(status)) return
         call mailx_detection_coor(m, sc%xn)
       end if
       call lap(rep%bodies_seconds)
@@ -357,7 +369,7 @@ contains
       ! every iteration, up to newton_max_iterations + 1 times).
       checks = sc%solver%s%max_checks
       do
-        if (mailx_converged(m, sc%newton_tolerance, sc%newton_max_iterations)) exit
+        if (mailx_converged(m, sc%newton_tolerance, sc%newton_max_iterations, status)) exit
         checks_left = checks - (rep%nlgs%sweeps + sc%solver%s%sweeps_per_check - 1) / sc%solver%s%sweeps_per_check
         if (checks_left < 1) then
           rep%nlgs%converged = .false.
@@ -376,6 +388,7 @@ contains
         rep%nlgs%converged = newton_rep%converged
       end do
       sc%solver%s%max_checks = checks
+      if (failed(status)) return
       call lap(rep%bodies_seconds)
       rep%newton_iterations = m%iterations
       rep%newton_converged = m%newton_converged
@@ -383,19 +396,7 @@ contains
       call cracks_update(sc%cracks, c, sc%laws, sc%steps_done == 0, sc%step + 1)
 
       ! Energy audit of the step (before the begin state is overwritten).
-      do k = 1, b%n
-        dx = sc%h * ((1.0_wp - sc%theta) * b%vbegin(:, k) + sc%theta * b%v(:, k))
-        if (.not. b%driven(1, k)) sc%work_gravity = sc%work_gravity + b%mass(1, k) * b%gravity(1) * dx(1)
-        if (.not. b%driven(2, k)) sc%work_gravity = sc%work_gravity + b%mass(2, k) * b%gravity(2) * dx(2)
-      end do
-      do k = 1, size(b%drives)
-        associate (d => b%drives(k))
-          if (d%is_velocity) cycle
-          dx = sc%h * ((1.0_wp - sc%theta) * b%vbegin(:, d%body) + sc%theta * b%v(:, d%body))
-          sc%work_forces = sc%work_forces + dx(d%dof) * ((1.0_wp - sc%theta) * drive_value(d, sc%time) + &
-                                                         sc%theta * drive_value(d, sc%time + sc%h))
-        end associate
-      end do
+      call rbdy2_add_step_work(b, sc%time, sc%h, sc%theta, sc%work_gravity, sc%work_forces)
       sc%work_supports = sc%work_supports + support_work(sc)
       dissipated_all = 0.0_wp
       nover = 0
@@ -455,24 +456,19 @@ contains
   subroutine scene_body_impulses(sc, imp)
     type(scene_t), intent(in) :: sc
     real(wp), allocatable, intent(out) :: imp(:, :)
-    integer :: k, a, o
-    real(wp) :: p(2), rt, rn
+    real(wp), parameter :: one(3) = 1.0_wp
+    integer :: k
+    real(wp) :: px, py, rt, rn
     allocate (imp(3, sc%bodies%n))
     imp = 0.0_wp
     associate (c => sc%contacts)
       do k = 1, c%n
-        a = c%cdb(k); o = c%anb(k)
         rt = c%r(1, k); rn = c%r(2, k)
-        p(1) = rt * c%normal(2, k) + rn * c%normal(1, k)
-        p(2) = -rt * c%normal(1, k) + rn * c%normal(2, k)
-        if (c%cdm(k) == bm_rigid) then
-          imp(1:2, a) = imp(1:2, a) + p
-          imp(3, a) = imp(3, a) + rt * c%lever(1, k) + rn * c%lever(2, k)
-        end if
-        if (c%anm(k) == bm_rigid) then
-          imp(1:2, o) = imp(1:2, o) - p
-          imp(3, o) = imp(3, o) - (rt * c%lever(3, k) + rn * c%lever(4, k))
-        end if
+        call frame2_global(c%normal(1, k), c%normal(2, k), rt, rn, px, py)
+        if (c%cdm(k) == bm_rigid) call rigid2_add_impulse(imp(:, c%cdb(k)), one, 1.0_wp, px, py, &
+                                                          rigid2_moment(rt, rn, c%lever(1, k), c%lever(2, k)))
+        if (c%anm(k) == bm_rigid) call rigid2_add_impulse(imp(:, c%anb(k)), one, -1.0_wp, px, py, &
+                                                          rigid2_moment(rt, rn, c%lever(3, k), c%lever(4, k)))
       end do
     end associate
   end subroutine scene_body_impulses

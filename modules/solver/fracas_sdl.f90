@@ -14,9 +14,9 @@
 module fracas_sdl
   use, intrinsic :: iso_fortran_env, only: int64
   use fracas_kinds, only: wp
-  use fracas_errors, only: fatal, warn
+  use fracas_errors, only: fatal, warn, status_t, raise
   use fracas_random, only: rng_t, rng_seed, rng_permute
-  use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
+  use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms, lmgc_add_sums
   use fracas_local_solver, only: coulomb_2d_inv, inverse_block, natural_map_2d, coulomb_3d, inverse_block_3d, &
                                  natural_map_3d
   implicit none
@@ -295,12 +295,15 @@ contains
   end function sdl_history_points
 
   !> Solve from the warm start r (dim, nc); r is the last iterate on return.
-  subroutine sdl_solve(p, s, r, rep, hist)
+  !> An iteration that diverges (NaN or Inf in LMGC90's norms): status, or the
+  !> run stops.
+  subroutine sdl_solve(p, s, r, rep, hist, status)
     type(sdl_problem_t), intent(in) :: p
     type(sdl_settings_t), intent(in) :: s
     real(wp), intent(inout) :: r(:, :)
     type(sdl_report_t), intent(out) :: rep
     type(sdl_history_t), intent(inout), optional :: hist
+    type(status_t), intent(out), optional :: status
     integer, allocatable :: order(:)
     type(rng_t) :: rng
     integer :: n, k, ih, spc, nfail
@@ -308,7 +311,7 @@ contains
     type(aa_t) :: aa
     real(wp), allocatable :: xprev(:, :)
     real(wp) :: tol_light, fsum, sums(6), maxes(2), e_est, ea, ep, eo
-    logical :: check, est, lmgc, conv, have_exact
+    logical :: check, est, lmgc, conv, have_exact, finite
     n = p%nc
     spc = max(1, s%sweeps_per_check)
     allocate (order(n))
@@ -375,7 +378,13 @@ contains
       if (check) then
         ! no criterion at all (err_tol = 0, check none): run max_sweeps
         conv = lmgc .or. s%err_tol > 0.0_wp
-        if (lmgc) conv = lmgc_converged(p, s, sums, maxes, rep)
+        if (lmgc) then
+          conv = lmgc_converged(p, s, sums, maxes, rep, finite)
+          if (.not. finite) then
+            call raise(status, 'stored-Delassus NLGS diverged (NaN or Inf in the reactions)')
+            return
+          end if
+        end if
         if (est) then
           e_est = sqrt(fsum) / qnorm(p)
           if (s%accel > 0) call aa_watch(aa, e_est, rep%sweeps)
@@ -603,47 +612,20 @@ contains
   end subroutine project_all
 
   !> LMGC90's normalised norms from the sums of a check sweep (the scene NLGS's
-  !> procedure; the velocity scale is the RMS of q over the contacts).
-  logical function lmgc_converged(p, s, sums, maxes, rep) result(conv)
+  !> procedure; the velocity scale is the RMS of q over the contacts). finite:
+  !> the sums hold no NaN or Inf.
+  logical function lmgc_converged(p, s, sums, maxes, rep, finite) result(conv)
     type(sdl_problem_t), intent(in) :: p
     type(sdl_settings_t), intent(in) :: s
     real(wp), intent(in) :: sums(6), maxes(2)
     type(sdl_report_t), intent(inout) :: rep
+    logical, intent(out) :: finite
     type(lmgc_norms_t) :: nrm
     call lmgc_norms(s%check, s%tol, sums, maxes, p%norm_q / sqrt(real(max(p%nc, 1), wp)), nrm, conv)
-    if (.not. nrm%finite) call fatal('stored-Delassus NLGS diverged (NaN or Inf in the reactions)')
+    finite = nrm%finite
     rep%quad_dv = nrm%quad_dv; rep%maxm_dv = nrm%maxm_dv; rep%quad_dvr = nrm%quad_dvr
     rep%maxm_dvr = nrm%maxm_dvr; rep%mean_dvor = nrm%mean_dvor
   end function lmgc_converged
-
-  !> LMGC90's check sums for one contact: du = W_aa (r_old - r_new), rbar the mean.
-  pure subroutine lmgc_sums(d, w, r0, r1, sums, maxes)
-    integer, intent(in) :: d
-    real(wp), intent(in) :: w(:), r0(:), r1(:)
-    real(wp), intent(inout) :: sums(6), maxes(2)
-    real(wp) :: du(3), rb(3), w0(3), w1(3), du2, rb2
-    integer :: i, j
-    du = 0.0_wp; w0 = 0.0_wp; w1 = 0.0_wp
-    do j = 1, d
-      do i = 1, d
-        du(i) = du(i) + w(i + d * (j - 1)) * (r0(j) - r1(j))
-        w0(i) = w0(i) + w(i + d * (j - 1)) * r0(j)
-        w1(i) = w1(i) + w(i + d * (j - 1)) * r1(j)
-      end do
-    end do
-    rb(1:d) = 0.5_wp * (r0(1:d) + r1(1:d))
-    if (all(rb(1:d) == 0.0_wp)) return
-    du2 = sum(du(1:d)**2)
-    rb2 = sum(rb(1:d)**2)
-    sums(1) = sums(1) + du2
-    sums(2) = sums(2) + du2 * rb2
-    sums(3) = sums(3) + sum(rb(1:d) * du(1:d))
-    sums(4) = sums(4) + 0.5_wp * (sum(w0(1:d) * r0(1:d)) + sum(w1(1:d) * r1(1:d)))
-    sums(5) = sums(5) + 0.5_wp * (sum(w0(1:d)**2) + sum(w1(1:d)**2))
-    sums(6) = sums(6) + 1.0_wp
-    maxes(1) = max(maxes(1), du2)
-    maxes(2) = max(maxes(2), du2 * rb2)
-  end subroutine lmgc_sums
 
   !> One 2D sweep. est: accumulate in fsum each contact's |F|^2 before its update; lmgc: LMGC90 sums.
   subroutine sweep_2d(p, order, relax, r, est, lmgc, fsum, sums, maxes)
@@ -676,7 +658,7 @@ contains
         rn = relax * rn + (1.0_wp - relax) * rn0
       end if
       r(1, a) = rn; r(2, a) = rt
-      if (lmgc) call lmgc_sums(2, p%wd(:, a), [rn0, rt0], [rn, rt], sums, maxes)
+      if (lmgc) call lmgc_add_sums(2, p%wd(:, a), [rn0, rt0], [rn, rt], sums, maxes)
     end do
   end subroutine sweep_2d
 
@@ -715,7 +697,7 @@ contains
       if (st < 0) nfail = nfail + 1
       if (relax /= 1.0_wp) r1 = relax * r1 + (1.0_wp - relax) * r0
       r(:, a) = r1
-      if (lmgc) call lmgc_sums(3, p%wd(:, a), r0, r1, sums, maxes)
+      if (lmgc) call lmgc_add_sums(3, p%wd(:, a), r0, r1, sums, maxes)
     end do
   end subroutine sweep_3d
 end module fracas_sdl

@@ -16,7 +16,7 @@ program test_linear_solver
   use fracas_test_matrices, only: lattice_triplets
   use fracas_random, only: rng_t, rng_seed, rng_below
   use fracas_testing, only: check_close, check_true, test_finish
-  use fracas_errors, only: itoa
+  use fracas_errors, only: itoa, status_t
   implicit none
   real(wp), parameter :: tol = 1.0e-10_wp, mass = 1.0_wp, stiffness = 100.0_wp
   type(rng_t) :: rng
@@ -53,6 +53,10 @@ program test_linear_solver
   call indefinite()
   call free_dofs()
   call inverses()
+  call singular_status('dense', 8, 'LAPACK dpotrf (dense Cholesky): matrix not positive definite (leading minor 64 of 128)')
+  call singular_status('cholmod', 20, 'CHOLMOD Cholesky: matrix not positive definite')
+  call singular_status('umfpack', 20, 'UMFPACK LU: matrix singular')
+  call singular_status('auto', 4, 'LAPACK dgetrf (dense LU): matrix singular (zero pivot at column 16 of 32)')
   call test_finish()
 
 contains
@@ -265,6 +269,7 @@ contains
     real(wp), allocatable :: bmat(:, :), c(:, :), cinv(:, :), eye(:, :)
     integer :: n, i, j
     logical :: ok
+    type(status_t) :: st
     real(wp) :: worst, asym
     worst = 0.0_wp
     asym = 0.0_wp
@@ -287,7 +292,44 @@ contains
     call check_close('dense_spd_inverse 6..16: max |C^-1 C - I|', worst, 0.0_wp, 1.0e-13_wp)
     call check_close('dense_spd_inverse 6..16: C^-1 exactly symmetric', asym, 0.0_wp, 0.0_wp)
     c = reshape([2.0_wp, 1.0_wp, 1.0_wp, -3.0_wp], [2, 2])
-    call dense_spd_inverse(c, ok)
+    call dense_spd_inverse(c, st)
+    ok = st%ok
     call check_true('dense_spd_inverse: indefinite [2 1; 1 -3] gives ok = false', .not. ok)
   end subroutine inverses
+
+  !> Errors as status: the singular lattice of singular_matrix_check (one dof cut
+  !> off) given to factor_build and factor_update with a status: the failure comes
+  !> back in it (the program goes on) with the message the run would stop with
+  !> (unit.singular.*, without a status), and a solve with a good matrix still works.
+  subroutine singular_status(method, nx, expect)
+    character(len=*), intent(in) :: method, expect
+    integer, intent(in) :: nx
+    type(sparse_t) :: a, good
+    type(factor_t) :: f
+    type(status_t) :: st
+    integer, allocatable :: rows(:), cols(:)
+    real(wp), allocatable :: vals(:), b(:)
+    character(len=:), allocatable :: label
+    label = 'status, '//method//' on '//itoa(2 * nx * nx)//' dofs'
+    call lattice_triplets(nx, nx, 1.0_wp, 100.0_wp, rows, cols, vals)
+    call sparse_from_triplets(2 * nx * nx, rows, cols, vals, good)
+    where (rows == nx * nx .or. cols == nx * nx) vals = 0.0_wp
+    call sparse_from_triplets(2 * nx * nx, rows, cols, vals, a)
+    call factor_build(f, a, method, status=st)
+    call check_true(label//': factor_build reports the failure', .not. st%ok)
+    if (.not. st%ok) call check_true(label//': message "factor_build: '//expect//'"', &
+                                     index(st%message, 'factor_build: '//expect) == 1)
+    call factor_build(f, good, method, status=st)
+    call check_true(label//': then a good matrix factorizes', st%ok)
+    call factor_update(f, a, st)
+    call check_true(label//': factor_update reports the failure', .not. st%ok)
+    if (.not. st%ok) call check_true(label//': message "factor_update: '//expect//'"', &
+                                     index(st%message, 'factor_update: '//expect) == 1)
+    call factor_update(f, good, st)
+    allocate (b(good%n))
+    b = 1.0_wp
+    call factor_solve(f, b, st)
+    call check_true(label//': refactorized good matrix solves', st%ok .and. all(b > 0.0_wp))
+    call factor_free(f)
+  end subroutine singular_status
 end program test_linear_solver
