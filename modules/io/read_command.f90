@@ -179,6 +179,10 @@ contains
   function expected(key) result(s)
     integer, intent(in) :: key
     character(len=:), allocatable :: s
+    if (len(choices(key)) > 0) then
+      s = 'one of '//replace_spaces(choices(key))
+      return
+    end if
     select case (trim(keys(key)))
     case ('time_step', 'final_time', 'newton_tolerance')
       s = 'a real > 0'
@@ -193,26 +197,6 @@ contains
       s = 'an integer >= 1'
     case ('nlgs_seed')
       s = 'an integer'
-    case ('nlgs_check')
-      s = 'one of Quad, Maxm, QM/16'
-    case ('nlgs_order')
-      s = 'one of stored, reversed, shuffled, colored'
-    case ('plane')
-      s = 'one of strain, stress'
-    case ('linear_solver')
-      s = 'one of auto, dense, cholmod'
-    case ('driven_start')
-      s = 'one of lmgc90, imposed, initial'
-    case ('cohesive_damage')
-      s = 'one of implicit, explicit, lmgc90'
-    case ('detection_approach', 'nlgs_check_pass')
-      s = 'one of yes, no'
-    case ('nlgs_unconverged')
-      s = 'one of warn, fail, stop'
-    case ('output_vtk_disks')
-      s = 'one of points, polygons'
-    case ('output_vtk_precision')
-      s = 'one of single, double'
     case default
       s = 'an integer >= 0'
     end select
@@ -241,16 +225,7 @@ contains
     case ('detection_frequency')
       run%detection_frequency = int_min(1)
     case ('nlgs_check')
-      select case (lv)
-      case ('quad')
-        run%nlgs_check = 'Quad '
-      case ('maxm')
-        run%nlgs_check = 'Maxm '
-      case ('qm/16')
-        run%nlgs_check = 'QM/16'
-      case default
-        call bad()
-      end select
+      run%nlgs_check = word()
     case ('nlgs_tolerance')
       run%nlgs_tolerance = real_in(epsilon(1.0_wp), huge(1.0_wp), .true.)
     case ('nlgs_relaxation')
@@ -260,12 +235,7 @@ contains
     case ('nlgs_max_checks')
       run%nlgs_max_checks = int_min(1)
     case ('nlgs_order')
-      select case (lv)
-      case ('stored', 'reversed', 'shuffled', 'colored')
-        run%nlgs_order = lv
-      case default
-        call bad()
-      end select
+      run%nlgs_order = word()
     case ('nlgs_seed')
       run%nlgs_seed = int_min(-huge(1))
     case ('output_dof_every')
@@ -277,72 +247,27 @@ contains
     case ('progress_every')
       run%progress_every = int_min(0)
     case ('plane')
-      select case (lv)
-      case ('strain', 'stress')
-        run%plane = lv
-      case default
-        call bad()
-      end select
+      run%plane = word()
     case ('newton_tolerance')
       run%newton_tolerance = real_in(0.0_wp, huge(1.0_wp), .false.)
     case ('newton_max_iterations')
       run%newton_max_iterations = int_min(1)
     case ('linear_solver')
-      select case (lv)
-      case ('auto', 'dense', 'cholmod')
-        run%linear_solver = lv
-      case default
-        call bad()
-      end select
+      run%linear_solver = word()
     case ('driven_start')
-      select case (lv)
-      case ('lmgc90', 'imposed', 'initial')
-        run%driven_start = lv
-      case default
-        call bad()
-      end select
+      run%driven_start = word()
     case ('cohesive_damage')
-      select case (lv)
-      case ('implicit', 'explicit', 'lmgc90')
-        run%cohesive_damage = lv
-      case default
-        call bad()
-      end select
+      run%cohesive_damage = word()
     case ('detection_approach')
-      select case (lv)
-      case ('yes', 'no')
-        run%detection_approach = lv == 'yes'
-      case default
-        call bad()
-      end select
+      run%detection_approach = word() == 'yes'
     case ('nlgs_check_pass')
-      select case (lv)
-      case ('yes', 'no')
-        run%nlgs_check_pass = lv == 'yes'
-      case default
-        call bad()
-      end select
+      run%nlgs_check_pass = word() == 'yes'
     case ('nlgs_unconverged')
-      select case (lv)
-      case ('warn', 'fail', 'stop')
-        run%nlgs_unconverged = lv
-      case default
-        call bad()
-      end select
+      run%nlgs_unconverged = word()
     case ('output_vtk_disks')
-      select case (lv)
-      case ('points', 'polygons')
-        run%output_vtk_disks = lv
-      case default
-        call bad()
-      end select
+      run%output_vtk_disks = word()
     case ('output_vtk_precision')
-      select case (lv)
-      case ('single', 'double')
-        run%output_vtk_precision = lv
-      case default
-        call bad()
-      end select
+      run%output_vtk_precision = word()
     end select
 
   contains
@@ -377,7 +302,55 @@ contains
                                    trim(keys(key))//"': expected "//expected(key))
       int_min = i
     end function int_min
+
+    !> The keyword's word (one of choices(key), any case), as the list spells it.
+    function word() result(w)
+      character(len=:), allocatable :: w, rest
+      integer :: sp
+      rest = choices(key)//' '
+      do while (len_trim(rest) > 0)
+        sp = index(rest, ' ')
+        w = rest(:sp - 1)
+        if (lower(w) == lv) return
+        rest = adjustl(rest(sp + 1:))
+      end do
+      call bad()
+    end function word
   end subroutine set_value
+
+  !> The words a keyword takes (space-separated; '' for a number), as they are spelt.
+  function choices(key) result(s)
+    integer, intent(in) :: key
+    character(len=:), allocatable :: s
+    select case (trim(keys(key)))
+    case ('nlgs_check'); s = 'Quad Maxm QM/16'
+    case ('nlgs_order'); s = 'stored reversed shuffled colored'
+    case ('plane'); s = 'strain stress'
+    case ('linear_solver'); s = 'auto dense cholmod'
+    case ('driven_start'); s = 'lmgc90 imposed initial'
+    case ('cohesive_damage'); s = 'implicit explicit lmgc90'
+    case ('detection_approach', 'nlgs_check_pass'); s = 'yes no'
+    case ('nlgs_unconverged'); s = 'warn fail stop'
+    case ('output_vtk_disks'); s = 'points polygons'
+    case ('output_vtk_precision'); s = 'single double'
+    case default; s = ''
+    end select
+  end function choices
+
+  !> 'a b c' -> 'a, b, c'.
+  function replace_spaces(words) result(s)
+    character(len=*), intent(in) :: words
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ''
+    do i = 1, len(words)
+      if (words(i:i) == ' ') then
+        s = s//', '
+      else
+        s = s//words(i:i)
+      end if
+    end do
+  end function replace_spaces
 
   !> ' (did you mean 'x'?)' for the closest keyword, or the list of keywords.
   function suggestion(word) result(s)
