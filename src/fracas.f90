@@ -10,7 +10,8 @@ program fracas
   use fracas_deck, only: deck_t
   use fracas_read_deck, only: read_deck
   use fracas_mailx, only: mailx_solver_summary
-  use fracas_scene, only: scene_t, step_report_t, scene_build, scene_free, scene_step
+  use fracas_scene, only: scene_t, step_report_t, scene_build, scene_free
+  use fracas_stepping, only: stepping_t, scene_advance
   use fracas_output, only: output_t, output_prepare, output_open, output_vtk, output_outbox, output_snapshot, &
                            output_series, output_close, output_summary, output_timing
   use fracas_version, only: version_report
@@ -28,6 +29,7 @@ program fracas
   type(output_t) :: out
   type(step_report_t) :: rep
   type(status_t) :: status
+  type(stepping_t) :: stepping
   integer :: i, nargs, nsteps, istep, first_step, every, unconverged, late, hdf5_every, first_unconverged
   integer :: restart_step, vtk_frames, outbox_writes
   integer(int64) :: total_sweeps
@@ -108,6 +110,8 @@ contains
     call clocks(t1, cpu1)
     call since(t0, cpu0, t1, cpu1, read_wall, read_cpu)
     call scene_build(deck, sc)
+    stepping%limit = deck%run%crack_step_limit
+    stepping%max_cuts = deck%run%crack_step_cuts
     call scene_check_start(sc, deck)
     call clocks(t0, cpu0)
     call since(t1, cpu1, t0, cpu0, setup_wall, setup_cpu)
@@ -153,7 +157,7 @@ contains
     call clocks(t0, cpu0)
     do istep = first_step, nsteps
       call set_error_context(step='step '//itoa(istep)//' (t='//rtoa(sc%time + sc%h)//')')
-      call scene_step(sc, rep, status)
+      call scene_advance(sc, stepping, rep, status)
       if (.not. status%ok) call fatal(status%message)   ! a body whose matrix does not factorize
       fault = scene_fault(sc)
       if (len(fault) > 0) call fatal('step '//itoa(sc%step)//' (t='//rtoa(sc%time)//'): '//fault// &
@@ -187,6 +191,10 @@ contains
       ! The residual is a diagnostic: say what convergence was judged on.
       write (output_unit, '(a)') 'fracas: (the residual is a diagnostic, not the convergence test: steps converge '// &
         'on LMGC90''s '//trim(deck%run%nlgs_check)//' norms below nlgs_tolerance, series/quad_dv and series/converged)'
+      if (stepping%limit > 0.0_wp) write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a,es9.2,a)') 'fracas: crack step '// &
+        'control: ', stepping%cut_steps, ' steps cut into ', stepping%substeps, ' sub-steps (', stepping%rejected, &
+        ' done again shorter; down to time_step/2^', stepping%deepest, ', limit ', stepping%limit, &
+        ' softening lengths per step)'
       write (output_unit, '(a)') 'fracas: output: '//output_summary(out)
       write (output_unit, '(a)') 'fracas: results: '//out_dir//'/OUTBOX/fracas.h5'
       if (deck%run%output_vtk_every > 0) write (output_unit, '(a)') 'fracas: ParaView: '//out_dir//'/DISPLAY/fracas.pvd'
@@ -205,6 +213,9 @@ contains
         end if
       end block
     end if
+    if (stepping%unmet > 0) call warn(itoa(stepping%unmet)//' sub-steps opened a damaging cohesive zone by more '// &
+      'than crack_step_limit at the shortest step allowed (time_step/2^crack_step_cuts): raise crack_step_cuts '// &
+      '(series/crack_increment in fracas.h5 shows where)')
     if (unconverged > 0) then
       block
         character(len=300) :: msg
@@ -296,6 +307,7 @@ contains
     write (output_unit, '(a,i0,a,i0,a,es11.4,a,i0,a,i0,a,es9.2,a,f0.1,a,f0.1,a)', advance='no') 'step ', istep, '/', &
       nsteps, '  t=', sc%time, '  contacts ', rep%contacts, '  sweeps ', rep%nlgs%sweeps, '  residual ', &
       rep%nlgs%residual, '  elapsed ', el, ' s  remaining ', remaining, ' s'
+    if (rep%substeps > 1) write (output_unit, '(a,i0,a)', advance='no') '  cut into ', rep%substeps, ' sub-steps'
     if (.not. rep%nlgs%converged) write (output_unit, '(a)', advance='no') '  NOT CONVERGED'
     if (unconverged > 0) write (output_unit, '(a,i0)', advance='no') '  unconverged steps ', unconverged
     write (output_unit, '(a)') ''

@@ -8,7 +8,8 @@ module fracas_czm
   implicit none
   private
   public :: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo, czm_beta_update, czm_beta_power, &
-            czm_stored_energy, beta_broken, czm_damage_energy, czm_step_dissipation, czm_step_factor
+            czm_stored_energy, beta_broken, czm_damage_energy, czm_step_dissipation, czm_step_factor, &
+            czm_softening_length
 
   integer, parameter :: czm_mac = 1, czm_mp3 = 2, czm_mal = 3, czm_th = 4, czm_expo = 5
   !> Below this beta the interface is broken (beta set to 0), as in LMGC90.
@@ -220,4 +221,28 @@ contains
            czm_step_dissipation(p, beta0, beta1, u1(1), u1(2), h)
     f = min(beta0**k, max(0.0_wp, work / den))
   end function czm_step_factor
+  !> The opening over which a law softens in the mode of the jump (ut, un), the
+  !> scale of crack_step_limit (doc/czm.md §9): from the end of its linear branch
+  !> to full separation (MP3, MAL, TH); EXPO, whose cut-off lies far out, the
+  !> length 1/phi over which its traction falls by e; MAC, whose damage only
+  !> tends to 0 (traction w^2 / (c d^3) past the opening sqrt(w / c) where damage
+  !> starts, c the mode's stiffness), that opening or d / 3, over which the
+  !> traction falls by e, whichever is longer.
+  pure real(wp) function czm_softening_length(p, ut, un) result(l)
+    type(czm_t), intent(in) :: p
+    real(wp), intent(in) :: ut, un
+    real(wp) :: c, s, g, di, m, dp
+    call envelope(p, ut, un, c, s, g, di, m)
+    select case (p%family)
+    case (czm_mac)
+      l = max(sqrt(p%w / c), sqrt(max(un, 0.0_wp)**2 + ut**2) / 3.0_wp)
+    case (czm_mp3, czm_mal)
+      l = 1.5_wp * (g / s - 0.5_wp * di)
+    case (czm_th)
+      dp = max(di, (1.0_wp - m) * p%dp1 + m * p%dp2)
+      l = (2.0_wp * g / s - dp + di) - dp
+    case default
+      l = (g - 0.5_wp * s * di) / s
+    end select
+  end function czm_softening_length
 end module fracas_czm

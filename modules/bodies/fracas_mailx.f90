@@ -30,7 +30,7 @@ module fracas_mailx
                                   factor_method_name, dense_spd_inverse
   implicit none
   private
-  public :: mailx_t, mailx_build, mailx_free, mailx_restore_state, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
+  public :: mailx_t, mailx_build, mailx_free, mailx_restore_state, mailx_set_time_step, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
             mailx_dense_max, mailx_gauss_values, mailx_radius
@@ -895,6 +895,22 @@ contains
     m%newton_converged = unbalanced <= tol * max(scale, tiny(1.0_wp))
     done = m%newton_converged .or. m%iterations > max_iterations
   end function mailx_converged
+
+  !> Change the time step: every body's iteration matrix M + (h theta)^2 K is
+  !> factorized again (nonlinear bodies at their current tangent). A matrix that
+  !> does not factorize: status, or the run stops.
+  subroutine mailx_set_time_step(m, h, status)
+    type(mailx_t), intent(inout) :: m
+    real(wp), intent(in) :: h
+    type(status_t), intent(inout), optional :: status
+    integer :: b
+    if (h == m%h) return
+    m%h = h
+    do b = 1, m%n
+      call factorize_body(m, b, status=status)
+      if (failed(status)) return
+    end do
+  end subroutine mailx_set_time_step
 
   !> Free the factorizations of the large bodies (their C handles: CHOLMOD,
   !> UMFPACK); the bodies' arrays go with m. Call before m is dropped or rebuilt.

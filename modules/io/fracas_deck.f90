@@ -209,6 +209,11 @@ module fracas_deck
     !> §3.2), or LMGC90's update after the step from the start-of-step damage
     !> ('explicit': reproduces LMGC90's outputs).
     character(len=8) :: cohesive_damage = 'implicit'
+    !> Time-step control for cracks: a step in which a damaging cohesive zone's
+    !> jump changes by more than this many softening lengths is done again in
+    !> halves (0: off), at most crack_step_cuts times (doc/czm.md §9).
+    real(wp) :: crack_step_limit = 0.0_wp
+    integer :: crack_step_cuts = 10
   end type run_control_t
 
   !> One command of POSTPRO.DAT (LMGC90's post-processing deck): its name as

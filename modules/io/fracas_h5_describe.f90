@@ -136,7 +136,10 @@ module fracas_h5_describe
     'series/detect_time|s|wall seconds of contact detection', &
     'series/prepare_time|s|wall seconds of preparing the contacts for the NLGS', &
     'series/contact_updates|-|local contact updates of the NLGS in the step', &
-    'series/velocity_time|s|wall seconds of the velocity and position update']
+    'series/velocity_time|s|wall seconds of the velocity and position update', &
+    'series/substeps|-|sub-steps the step was cut into (crack_step_limit; 1: not cut)', &
+    'series/rejected_substeps|-|sub-steps done again shorter in the step (crack_step_limit)', &
+    'series/crack_increment|1|largest change of a damaging cohesive jump in a (sub-)step, in softening lengths']
 
 contains
 

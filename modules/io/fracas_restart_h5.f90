@@ -4,7 +4,8 @@
 !>
 !>   /restart                 attribute last: step of the latest restart point
 !>   /restart/<step>          one point (group name: the step number, no padding)
-!>     attributes  step, steps_done, time, bodies, contactors, vtk_frames, outbox_writes
+!>     attributes  step, steps_done, step_level (halvings of the time step
+!>                 the next step starts with: crack_step_limit), time, bodies, contactors, vtk_frames, outbox_writes
 !>     X, V        (3, nb) body displacements and velocities at the end of the step
 !>     energies    energy audit accumulators (names in attribute names)
 !>     rng_state   the NLGS shuffle generator, a 64-bit state as two 32-bit halves
@@ -25,7 +26,7 @@ module fracas_restart_h5
   use fracas_strings, only: itoa
   use fracas_files, only: file_exists
   use fracas_h5, only: hid_t, h5_open_file, h5_close_file, h5_create_group, h5_open_group, &
-                       h5_close_group, h5_exists, h5_write_attr, h5_read_attr, &
+                       h5_close_group, h5_exists, h5_write_attr, h5_read_attr, h5_has_attr, &
                        h5_write_dataset, h5_read_dataset
   implicit none
   private
@@ -37,6 +38,7 @@ module fracas_restart_h5
 
   type :: restart_state_t
     integer :: step = 0, steps_done = 0
+    integer :: step_level = 0            !< halvings of the time step the next step starts with
     real(wp) :: time = 0.0_wp
     integer :: vtk_frames = 0, outbox_writes = 0
     integer(i8) :: rng_state = 0_i8
@@ -77,6 +79,7 @@ contains
     call h5_create_group(groot, name, g)
     call h5_write_attr(g, 'step', int(st%step, ik))
     call h5_write_attr(g, 'steps_done', int(st%steps_done, ik))
+    call h5_write_attr(g, 'step_level', int(st%step_level, ik))
     call h5_write_attr(g, 'time', st%time)
     call h5_write_attr(g, 'bodies', int(size(st%x, 2), ik))
     call h5_write_attr(g, 'contactors', int(st%ntactors, ik))
@@ -151,6 +154,10 @@ contains
     st%where = trim(path)//':/restart/'//name
     call h5_read_attr(g, 'step', ival); st%step = ival
     call h5_read_attr(g, 'steps_done', ival); st%steps_done = ival
+    st%step_level = 0   ! files of versions without crack_step_limit
+    if (h5_has_attr(g, 'step_level')) then
+      call h5_read_attr(g, 'step_level', ival); st%step_level = ival
+    end if
     call h5_read_attr(g, 'time', st%time)
     call h5_read_attr(g, 'contactors', ival); st%ntactors = ival
     call h5_read_attr(g, 'vtk_frames', ival); st%vtk_frames = ival

@@ -11,14 +11,14 @@ module fracas_read_command
   private
   public :: read_command, apply_command_setting, check_run_control, command_keywords
 
-  integer, parameter :: n_keys = 27
+  integer, parameter :: n_keys = 29
   character(len=21), parameter :: keys(n_keys) = [character(len=21) :: &
     'time_step', 'number_of_steps', 'final_time', 'theta', 'detection_frequency', &
     'nlgs_check', 'nlgs_tolerance', 'nlgs_relaxation', 'nlgs_sweeps_per_check', &
     'nlgs_max_checks', 'nlgs_order', 'nlgs_seed', 'output_dof_every', 'output_vtk_every', &
     'output_hdf5_every', 'progress_every', 'plane', 'newton_tolerance', 'newton_max_iterations', &
     'linear_solver', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision', 'driven_start', &
-    'detection_approach', 'nlgs_check_pass', 'cohesive_damage']
+    'detection_approach', 'nlgs_check_pass', 'cohesive_damage', 'crack_step_limit', 'crack_step_cuts']
   integer, parameter :: k_time_step = 1, k_number_of_steps = 2, k_final_time = 3
   !> Largest NLGS sweep budget of a step (sweeps per check x checks).
   real(wp), parameter :: max_sweeps_per_step = 1.0e8_wp
@@ -197,6 +197,10 @@ contains
       s = 'an integer >= 1'
     case ('nlgs_seed')
       s = 'an integer'
+    case ('crack_step_limit')
+      s = 'a real >= 0 (softening lengths per step; 0: off)'
+    case ('crack_step_cuts')
+      s = 'an integer in [1, 30]'
     case default
       s = 'an integer >= 0'
     end select
@@ -258,6 +262,12 @@ contains
       run%driven_start = word()
     case ('cohesive_damage')
       run%cohesive_damage = word()
+    case ('crack_step_limit')
+      run%crack_step_limit = real_in(0.0_wp, huge(1.0_wp), .true.)
+    case ('crack_step_cuts')
+      run%crack_step_cuts = int_min(1)
+      if (run%crack_step_cuts > 30) call input_error(origin, line, col, "value "//itoa(run%crack_step_cuts)// &
+        " out of range for 'crack_step_cuts': expected "//expected(key))
     case ('detection_approach')
       run%detection_approach = word() == 'yes'
     case ('nlgs_check_pass')

@@ -22,7 +22,7 @@ module fracas_nlgs
                                  coh_factor, coh_released, coh_u0t, coh_u0n, coh_h, coh_prev, coh_uend, coh_bracket, &
                                  cohesive_end_jump
   use fracas_czm, only: czm_t, czm_beta_update, czm_stored_energy, czm_step_dissipation, czm_step_factor, &
-                        czm_beta_power
+                        czm_beta_power, czm_softening_length
   use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
   use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
   use fracas_grow, only: grow
@@ -160,17 +160,20 @@ contains
   !> energy released by damage (each contact's also in coh(coh_released)): with
   !> damage solved within the step, the law's dissipation from beta0 to beta
   !> (czm_step_dissipation); with LMGC90's explicit update, the drop of the stored
-  !> energy when beta falls at the end-of-step jumps (never negative).
-  subroutine nlgs_update_cohesive(c, laws, h, t_end, stored, coh_work, released)
+  !> energy when beta falls at the end-of-step jumps (never negative). increment:
+  !> the largest change of the jump (its opening part) over the step at a contact
+  !> whose damage grew, in units of the law's softening length (crack_step_limit).
+  subroutine nlgs_update_cohesive(c, laws, h, t_end, stored, coh_work, released, increment)
     type(contacts_t), intent(inout) :: c
     type(law_t), intent(in) :: laws(:)
     real(wp), intent(in) :: h, t_end
-    real(wp), intent(out) :: stored, coh_work, released
+    real(wp), intent(out) :: stored, coh_work, released, increment
     integer :: k
     real(wp) :: ut, un, beta, rc(2), e_new, e_k, u1(2)
     stored = 0.0_wp
     coh_work = 0.0_wp
     released = 0.0_wp
+    increment = 0.0_wp
     do k = 1, c%n
       if (laws(c%law(k))%kind /= law_czm) cycle
       associate (z => laws(c%law(k))%czm)
@@ -184,6 +187,8 @@ contains
         ut = u1(1); un = u1(2)
         beta = czm_beta_update(z, c%internals(4, k), ut, un, h)
         if (beta < 1.0_wp .and. c%internals(5, k) < 0.0_wp) c%internals(5, k) = t_end
+        if (beta < c%internals(4, k)) increment = max(increment, norm2([ut - c%internals(2, k), &
+          max(un, 0.0_wp) - max(c%internals(3, k), 0.0_wp)]) / czm_softening_length(z, ut, un))
         e_new = c%length(k) * czm_stored_energy(z, beta, ut, un)
         if (c%cohesive(k) .and. c%coh(coh_law, k) > 0.0_wp) then
           e_k = c%length(k) * czm_step_dissipation(z, c%internals(4, k), beta, ut, un, h)

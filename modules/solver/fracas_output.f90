@@ -42,18 +42,19 @@ module fracas_output
   public :: output_t, output_prepare, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
             output_flush, output_close, series_names, output_owns, output_summary, output_timing
 
-  integer, parameter :: n_series = 36
+  integer, parameter :: n_series = 39
   character(len=24), parameter :: series_names(n_series) = [character(len=24) :: &
     'step', 'time', 'contacts', 'active_contacts', 'sweeps', 'converged', 'residual_natural_map', &
     'residual_onepq', 'quad_dv', 'maxm_dv', 'mean_dvor', 'kinetic_energy', 'work_gravity', &
     'work_forces', 'work_supports', 'dissipated', 'cohesive_energy', 'damage_dissipated', 'balance_error', &
     'mean_overlap', 'max_overlap', 'solve_time', 'step_time', 'elastic_energy', 'plastic_work', &
     'newton_iterations', 'crack_length', 'damaged_length', 'broken_interfaces', 'damaged_interfaces', &
-    'bodies_time', 'detect_time', 'prepare_time', 'contact_updates', 'velocity_time', 'fragments']
+    'bodies_time', 'detect_time', 'prepare_time', 'contact_updates', 'velocity_time', 'fragments', &
+    'substeps', 'rejected_substeps', 'crack_increment']
   !> The series that count (stored as Int32; contact_updates, which can pass 2^31, stays Float64).
-  character(len=24), parameter :: integer_series(9) = [character(len=24) :: 'step', 'contacts', &
+  character(len=24), parameter :: integer_series(11) = [character(len=24) :: 'step', 'contacts', &
     'active_contacts', 'sweeps', 'converged', 'newton_iterations', 'broken_interfaces', 'damaged_interfaces', &
-    'fragments']
+    'fragments', 'substeps', 'rejected_substeps']
   integer, parameter :: n_outline = 24   !< points of a circle or wall outline
   !> Seconds of wall time between flushes of the POSTPRO files.
   real(wp), parameter :: flush_interval = 2.0_wp
@@ -238,6 +239,8 @@ contains
       call put_i('progress_every', r%progress_every)
       call put_s('driven_start', trim(r%driven_start))
       call put_s('cohesive_damage', trim(r%cohesive_damage))
+      call put_r('crack_step_limit', r%crack_step_limit)
+      call put_i('crack_step_cuts', r%crack_step_cuts)
       call put_s('plane', trim(r%plane))
       call put_r('newton_tolerance', r%newton_tolerance)
       call put_i('newton_max_iterations', r%newton_max_iterations)
@@ -1168,7 +1171,8 @@ contains
       rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
       sc%meshes%plastic_work, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
       real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds, &
-      real(rep%nlgs%updates, wp), rep%velocity_seconds, real(fragment_count(sc), wp)]
+      real(rep%nlgs%updates, wp), rep%velocity_seconds, real(fragment_count(sc), wp), real(rep%substeps, wp), &
+      real(rep%rejected, wp), rep%crack_increment]
     ! A sound state can still give non-finite diagnostics (an NLGS residual of a
     ! law stiffness near the largest double): the step's results are nonsense.
     do k = 1, n_series

@@ -20,7 +20,7 @@ module fracas_restart
   use fracas_mailx, only: mailx_restore_state
   implicit none
   private
-  public :: restart_save, restart_load
+  public :: restart_save, restart_load, scene_capture, scene_restore
 
 contains
 
@@ -32,14 +32,43 @@ contains
     integer, intent(in) :: vtk_frames, outbox_writes
     real(wp), intent(in) :: postpro_sums(:)   !< running sums of the POSTPRO commands
     type(restart_state_t) :: st
-    integer :: n
     if (.not. r%is_open) return
-    st%step = sc%step
-    st%steps_done = sc%steps_done
-    st%time = sc%time
+    call scene_capture(sc, st)
     st%vtk_frames = vtk_frames
     st%outbox_writes = outbox_writes
     st%postpro_sums = postpro_sums
+    call restart_h5_write(r%fid, st)
+  end subroutine restart_save
+
+  !> Put the scene built from the deck into the state of the restart point of
+  !> step `step` (< 0: the latest) of PATH. The deck must describe the same
+  !> bodies and contactors. Returns the output counters and the POSTPRO
+  !> running sums to continue from.
+  subroutine restart_load(path, step, sc, vtk_frames, outbox_writes, postpro_sums)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: step
+    type(scene_t), intent(inout) :: sc
+    integer, intent(out) :: vtk_frames, outbox_writes
+    real(wp), allocatable, intent(out) :: postpro_sums(:)
+    type(restart_state_t) :: st
+    call restart_h5_read(path, step, st)
+    call validate_point(st, sc)
+    call scene_restore(sc, st, checked=.true.)
+    vtk_frames = st%vtk_frames
+    outbox_writes = st%outbox_writes
+    postpro_sums = st%postpro_sums
+  end subroutine restart_load
+
+  !> The scene's state at the end of a step, all that the next step reads:
+  !> what a restart point holds (and a step done again shorter starts from).
+  subroutine scene_capture(sc, st)
+    type(scene_t), intent(in) :: sc
+    type(restart_state_t), intent(out) :: st
+    integer :: n
+    st%step = sc%step
+    st%steps_done = sc%steps_done
+    st%step_level = sc%step_level
+    st%time = sc%time
     st%rng_state = sc%solver%rng%state
     st%energies = [sc%kinetic0, sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, &
                    sc%cohesive_energy, sc%damage_dissipated]
@@ -91,24 +120,17 @@ contains
         st%crack_family_damage = cr%family_damage
       end if
     end associate
-    call restart_h5_write(r%fid, st)
-  end subroutine restart_save
+  end subroutine scene_capture
 
-  !> Put the scene built from the deck into the state of the restart point of
-  !> step `step` (< 0: the latest) of PATH. The deck must describe the same
-  !> bodies and contactors. Returns the output counters and the POSTPRO
-  !> running sums to continue from.
-  subroutine restart_load(path, step, sc, vtk_frames, outbox_writes, postpro_sums)
-    character(len=*), intent(in) :: path
-    integer, intent(in) :: step
+  !> Put the scene into a state scene_capture took (of this scene, or of the
+  !> scene a restart point was written from). checked: the state comes from a
+  !> file and must pass the state guard before the meshes are assembled from it.
+  subroutine scene_restore(sc, st, checked)
     type(scene_t), intent(inout) :: sc
-    integer, intent(out) :: vtk_frames, outbox_writes
-    real(wp), allocatable, intent(out) :: postpro_sums(:)
-    type(restart_state_t) :: st
+    type(restart_state_t), intent(in) :: st
+    logical, intent(in) :: checked
     integer :: n
     character(len=:), allocatable :: fault
-    call restart_h5_read(path, step, st)
-    call validate_point(st, sc)
     if (allocated(st%crack_beta)) then
       sc%cracks%pt_beta = st%crack_beta
       sc%cracks%pt_glued = st%crack_flags(1, :) == 1
@@ -120,6 +142,8 @@ contains
     end if
     sc%step = st%step
     sc%steps_done = st%steps_done
+    sc%step_level = st%step_level
+    sc%substep = 0
     sc%time = st%time
     sc%solver%rng%state = st%rng_state
     sc%kinetic0 = st%energies(1)
@@ -159,7 +183,7 @@ contains
       d%pair_law = st%pairs(4, :)
       d%pair_alert = st%pair_alert
     end associate
-    ! The state the point holds must pass the state guard, as after any step
+    ! A state read from a file must pass the state guard, as after any step
     ! (finite but absurd values: a body or node beyond what double precision
     ! resolves at its size), before the meshes are assembled from it.
     if (allocated(st%mesh_x)) then
@@ -167,14 +191,13 @@ contains
       sc%meshes%v = st%mesh_v
       sc%meshes%gp = st%mesh_gp
     end if
-    fault = scene_fault(sc)
-    if (len(fault) > 0) call fatal('restart point '//st%where//': the state it holds is not sound: '//fault)
+    if (checked) then
+      fault = scene_fault(sc)
+      if (len(fault) > 0) call fatal('restart point '//st%where//': the state it holds is not sound: '//fault)
+    end if
     if (allocated(st%mesh_x)) &
       call mailx_restore_state(sc%meshes, st%mesh_x, st%mesh_v, st%mesh_gp, st%mesh_fint, st%mesh_energies)
-    vtk_frames = st%vtk_frames
-    outbox_writes = st%outbox_writes
-    postpro_sums = st%postpro_sums
-  end subroutine restart_load
+  end subroutine scene_restore
 
   !> Shapes, ranges, finite values and indices of every dataset of a restart
   !> point against the scene built from the deck, before any is used: an error
@@ -188,6 +211,8 @@ contains
     if (st%step < 0 .or. st%steps_done < 0 .or. st%steps_done > st%step) &
       call bad('', 'step '//itoa(st%step)//' and steps_done '//itoa(st%steps_done)//' are not 0 <= steps_done <= step')
     if (.not. ieee_is_finite(st%time)) call bad('', 'time is '//rtoa(st%time))
+    if (st%step_level < 0 .or. st%step_level > 30) call bad('', 'step_level '//itoa(st%step_level)// &
+      ' is outside 0 .. 30')
     if (st%vtk_frames < 0 .or. st%outbox_writes < 0) call bad('', 'negative output counters')
     if (size(st%x, 2) /= sc%bodies%n .or. st%ntactors /= nt) &
       call bad('', 'the restart point has '//itoa(size(st%x, 2))//' bodies and '//itoa(st%ntactors)// &

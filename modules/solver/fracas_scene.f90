@@ -44,11 +44,21 @@ module fracas_scene
     real(wp) :: step_seconds = 0.0_wp    !< the whole step
     integer :: newton_iterations = 0     !< meshed bodies: Newton iterations of the step
     logical :: newton_converged = .true. !< ... and whether their loop converged
+    !> Largest change of a damaging cohesive zone's jump in the step, in softening
+    !> lengths (crack_step_limit); sub-steps the step was cut into, and sub-steps
+    !> done again shorter (fracas_stepping).
+    real(wp) :: crack_increment = 0.0_wp
+    integer :: substeps = 1, rejected = 0
   end type step_report_t
 
   type :: scene_t
     real(wp) :: h = 0.0_wp, theta = 0.5_wp, time = 0.0_wp
     integer :: step = 0, steps_done = 0, detection_frequency = 1
+    !> The run's time step (h is shorter in the sub-steps of a cut step), the
+    !> sub-steps of the current step already done, and the number of halvings
+    !> of the time step the next step starts with (fracas_stepping).
+    real(wp) :: h_step = 0.0_wp
+    integer :: substep = 0, step_level = 0
     type(rbdy2_t) :: bodies                  !< rigid bodies (RBDY2)
     type(mailx_t) :: meshes                  !< meshed bodies (MAILx); n = 0 in a rigid scene
     real(wp) :: newton_tolerance = 1.0e-6_wp
@@ -90,6 +100,7 @@ contains
     type(body_input_t), allocatable :: bodies(:)
 
     sc%h = deck%run%time_step
+    sc%h_step = sc%h
     sc%theta = deck%run%theta
     sc%detection_frequency = max(1, deck%run%detection_frequency)
     sc%newton_tolerance = deck%run%newton_tolerance
@@ -279,19 +290,25 @@ contains
     end do
   end subroutine polygons_to_centroid
 
-  !> Advance the scene by one time step. A meshed body whose iteration matrix
-  !> does not factorize: status (the scene is then left mid-step), or the run stops.
-  subroutine scene_step(sc, rep, status)
+  !> Advance the scene by one time step, of length sc%h. A meshed body whose
+  !> iteration matrix does not factorize: status (the scene is then left
+  !> mid-step), or the run stops. finishes_step = .false.: a sub-step of a cut
+  !> step (the step counters stay; fracas_stepping).
+  subroutine scene_step(sc, rep, status, finishes_step)
     type(scene_t), intent(inout) :: sc
     type(step_report_t), intent(out) :: rep
     type(status_t), intent(out), optional :: status
+    logical, intent(in), optional :: finishes_step
     integer :: k, pos, nover, checks, checks_left
-    logical :: pair_known, swapped
+    logical :: pair_known, swapped, at_start, finishes
     integer(i8) :: t0, t1, t2, rate
     real(wp) :: margin, vmax, gap_end, stored, coh_work, released, dissipated_all
     type(nlgs_report_t) :: newton_rep
     call system_clock(t0, rate)
     t1 = t0
+    finishes = .true.
+    if (present(finishes_step)) finishes = finishes_step
+    at_start = sc%step == 0 .and. sc%substep == 0   ! the run's first (sub-)step from the deck
     associate (b => sc%bodies, c => sc%contacts, m => sc%meshes)
       call rbdy2_begin_step(b, sc%time, sc%h, sc%theta)
       call rbdy2_detection_coor(b, sc%h, sc%theta, sc%q)
@@ -310,7 +327,7 @@ contains
                      norm2(b%vbegin(1:2, k)) + abs(b%vbegin(3, k)) * b%avrd(k))
         end do
         if (m%nnodes > 0) vmax = max(vmax, maxval(norm2(m%vfree, dim=1)), maxval(norm2(m%vbegin, dim=1)))
-        margin = 2.0_wp * vmax * sc%h * sc%detection_frequency
+        margin = 2.0_wp * vmax * sc%h_step * sc%detection_frequency
         if (m%n > 0) then
           call detect_rough(sc%det, sc%tactors, sc%q, sc%movable, margin, sc%xn, m%movable)
         else
@@ -341,18 +358,18 @@ contains
           ! A contact seen first with an overlap was missed while approaching:
           ! the alert distance is shorter than what bodies travel in a step.
           ! (A polygon pair in contact may only have moved its contact point.)
-          if (c%gap(k) < 0.0_wp .and. sc%step > 0) pair_known = history_knows_pair(sc%hist, c%cd(k), c%an(k))
-          if (c%gap(k) < 0.0_wp .and. sc%step > 0 .and. .not. pair_known) then
+          if (c%gap(k) < 0.0_wp .and. .not. at_start) pair_known = history_knows_pair(sc%hist, c%cd(k), c%an(k))
+          if (c%gap(k) < 0.0_wp .and. .not. at_start .and. .not. pair_known) then
             rep%late_contacts = rep%late_contacts + 1
             rep%late_overlap = max(rep%late_overlap, -c%gap(k))
           end if
           ! Interfaces present at the start of a simulation are glued (beta = 1);
           ! contacts made later start without cohesion.
           if (c%with_cohesion) c%internals(:, k) = [c%length(k), 0.0_wp, 0.0_wp, &
-                                                    merge(1.0_wp, 0.0_wp, sc%step == 0), -99.0_wp]
+                                                    merge(1.0_wp, 0.0_wp, at_start), -99.0_wp]
           ! IQS_CLB_g0: the gap at the first step is the reference (LMGC90), 0 later
           if (sc%laws(c%law(k))%kind == law_iqs_clb_g0) &
-            c%internals(:, k) = [merge(max(0.0_wp, c%gap(k)), 0.0_wp, sc%step == 0), 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]
+            c%internals(:, k) = [merge(max(0.0_wp, c%gap(k)), 0.0_wp, at_start), 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]
         end if
       end do
       call lap(rep%detect_seconds)
@@ -392,8 +409,8 @@ contains
       call lap(rep%bodies_seconds)
       rep%newton_iterations = m%iterations
       rep%newton_converged = m%newton_converged
-      call nlgs_update_cohesive(c, sc%laws, sc%h, sc%time + sc%h, stored, coh_work, released)
-      call cracks_update(sc%cracks, c, sc%laws, sc%steps_done == 0, sc%step + 1)
+      call nlgs_update_cohesive(c, sc%laws, sc%h, sc%time + sc%h, stored, coh_work, released, rep%crack_increment)
+      call cracks_update(sc%cracks, c, sc%laws, at_start, sc%step + 1)
 
       ! Energy audit of the step (before the begin state is overwritten).
       call rbdy2_add_step_work(b, sc%time, sc%h, sc%theta, sc%work_gravity, sc%work_forces)
@@ -423,8 +440,13 @@ contains
       if (m%n > 0) call mailx_end_step(m)
       call history_from_contacts(sc%hist, c, sc%tactors%n, sc%h)
       sc%time = sc%time + sc%h
-      sc%step = sc%step + 1
-      sc%steps_done = sc%steps_done + 1
+      if (finishes) then
+        sc%step = sc%step + 1
+        sc%steps_done = sc%steps_done + 1
+        sc%substep = 0
+      else
+        sc%substep = sc%substep + 1
+      end if
       rep%contacts = c%n
       rep%kinetic = rbdy2_kinetic_energy(b)
       if (m%n > 0) rep%kinetic = rep%kinetic + mailx_kinetic_energy(m)

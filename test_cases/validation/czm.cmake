@@ -33,6 +33,12 @@ set(czm_run_args "")
 add_test(NAME validation.czm_step_size
          COMMAND ${FRACAS_PYTHON} ${_czm}/czm_step_size/study.py ${FRACAS_BIN} ${CMAKE_CURRENT_BINARY_DIR}/czm_step_size)
 set_tests_properties(validation.czm_step_size PROPERTIES LABELS "quick;validation;czm")
+# Time-step control for cracks (crack_step_limit): increments bounded, steps cut and grown
+# back on the run's time grid, energies of both schemes against the law's.
+add_test(NAME validation.crack_step_control
+         COMMAND ${FRACAS_PYTHON} ${_czm}/crack_step_control/check.py ${FRACAS_BIN}
+                 ${CMAKE_CURRENT_BINARY_DIR}/crack_step_control)
+set_tests_properties(validation.crack_step_control PROPERTIES LABELS "quick;validation;czm")
 # Mode II under a compressive preload: cohesive shear, then Coulomb friction mu p.
 foreach(law mac expo)
   fracas_czm_case(mode_II_${law} ${_czm}/czm_mode_II/${law} ${_czm}/czm_mode_II/check.py quick ${law})
