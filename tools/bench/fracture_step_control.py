@@ -126,7 +126,7 @@ def main():
         c = CASES[name]
         deck = c["deck"](work)
         base = work / name / "fixed_0"
-        run(a.fracas, deck, base, [])
+        run(a.fracas, deck, base, ["crack_step_limit=0"])
         h, n = run_control(base)
         variants = [(f"fixed h/{2 ** k}", f"fixed_{k}", k, 0.0) for k in range(c["halvings"] + 1)]
         variants += [(f"control {lim:g} at h", f"control_{lim:g}", 0, lim) for lim in c["limits"]]
@@ -134,9 +134,7 @@ def main():
         variants.append((f"reference: control {finest:g} at h/{2 ** c['halvings']}", "reference", c["halvings"], finest))
         results = []
         for label, tag, k, lim in variants:
-            sets = [f"time_step={h / 2 ** k!r}", f"number_of_steps={n * 2 ** k}"]
-            if lim > 0:
-                sets.append(f"crack_step_limit={lim}")
+            sets = [f"time_step={h / 2 ** k!r}", f"number_of_steps={n * 2 ** k}", f"crack_step_limit={lim}"]
             out = work / name / tag
             cpu = run(a.fracas, deck, out, sets)
             results.append((label, cpu, c["metrics"](out)))

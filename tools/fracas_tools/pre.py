@@ -614,6 +614,8 @@ COMMAND_KEYWORDS = {
     "output_vtk_disks": ("points", "polygons"),
     "output_vtk_precision": ("single", "double"),
     "cohesive_damage": ("implicit", "explicit", "lmgc90"),
+    "crack_step_limit": float,
+    "crack_step_cuts": int,
     # meshed bodies
     "plane": ("strain", "stress"),
     "newton_tolerance": float,
@@ -621,10 +623,10 @@ COMMAND_KEYWORDS = {
     "linear_solver": ("auto", "dense", "cholmod"),
 }
 
-_POSITIVE = {"time_step", "number_of_steps", "final_time", "detection_frequency",
+_POSITIVE = {"time_step", "number_of_steps", "final_time", "detection_frequency", "crack_step_cuts",
              "nlgs_tolerance", "nlgs_sweeps_per_check", "nlgs_max_checks",
              "newton_tolerance", "newton_max_iterations"}
-_NONNEGATIVE = {"output_dof_every", "output_vtk_every", "output_hdf5_every", "progress_every"}
+_NONNEGATIVE = {"output_dof_every", "output_vtk_every", "output_hdf5_every", "progress_every", "crack_step_limit"}
 
 
 class RunControl:

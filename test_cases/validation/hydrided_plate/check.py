@@ -34,23 +34,24 @@ MARGIN = 0.10
 AUDIT_TOL = 2e-3
 FAMILY_SUM_TOL = 1e-9
 
-# The tighter run: each deck with its run control but dt/2 = 1e-10 s and 600 steps
-# (test_cases/validation/hydrided_plate/dt_study.py, damage within the step, the
-# default; Fracas 2026-11-27): peak stress (MPa), macro-crack shares, damage energy per
-# family (J/m).
+# The tighter run: each deck with its run control (damage within the step, steps cut
+# where a crack runs: crack_step_limit 0.25) but dt/2 = 1e-10 s and 600 steps
+# (test_cases/validation/hydrided_plate/dt_study.py; Fracas 2026-11-27): peak stress
+# (MPa), macro-crack shares, damage energy per family (J/m).
 REFERENCE = {
     "weak": dict(peak=474.07, shares=dict(HY_HY=0.000, HY_MA=0.716, MA_MA=0.284),
-                 damage=dict(HY_HY=1.083e-7, HY_MA=6.635e-5, MA_MA=2.166e-4)),
-    "strong": dict(peak=707.30, shares=dict(HY_HY=0.133, HY_MA=0.421, MA_MA=0.446),
-                   damage=dict(HY_HY=7.314e-5, HY_MA=2.416e-4, MA_MA=3.283e-4)),
+                 damage=dict(HY_HY=1.075e-7, HY_MA=6.635e-5, MA_MA=2.161e-4)),
+    "strong": dict(peak=707.33, shares=dict(HY_HY=0.133, HY_MA=0.421, MA_MA=0.446),
+                   damage=dict(HY_HY=7.351e-5, HY_MA=2.413e-4, MA_MA=3.275e-4)),
 }
-# Measured at the deck's dt against REFERENCE: peak -0.71 % weak, -1.09 % strong; shares
-# within 0.072; family energies within 0.14 of the run's total damage energy (the weak
-# plate's crack takes a slightly different path). Tolerances: those with headroom, so
-# that a bug that moves a figure by more than the scheme's own time-step change turns
-# this red (LMGC90's explicit update, first order in dt, is 21 % and 19 % above on the
-# peaks at the deck's dt: doc/czm.md 3.2).
-TOLERANCES = dict(peak=0.02, share=0.10, damage_of_total=0.20)
+# Measured at the deck's dt against REFERENCE: peak -0.02 % weak, -0.98 % strong (the
+# strong plate's peak, before its crack runs, moves with the bulk's time step: doc/czm.md
+# 9); shares within 0.009; family energies within 0.009 of the run's total damage energy.
+# Without the step control: -0.71 % and -1.09 %, shares within 0.072, energies within 0.14.
+# Tolerances: those with headroom, so that a bug that moves a figure by more than the
+# scheme's own time-step change turns this red (LMGC90's explicit update, first order
+# in dt, is 21 % and 19 % above on the peaks at the deck's dt: doc/czm.md 3.2).
+TOLERANCES = dict(peak=0.02, share=0.05, damage_of_total=0.10)
 
 
 def main(weak_dir, strong_dir):

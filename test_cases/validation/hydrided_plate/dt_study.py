@@ -6,7 +6,8 @@ damage energy of each run (tools/hydride/hydride_post.py). Issue 17's target: th
 stress moves by less than 1 % from dt to dt/2 with the default.
 
 usage: dt_study.py FRACAS OUT_DIR [--schemes implicit,explicit] [--halvings 1] [--bondings weak,strong]
-                   [--check TOL]
+                   [--limit L] [--check TOL]
+--limit L: crack_step_limit of every run (default: the decks', 0.25; 0: fixed steps).
 --check TOL: exit 1 if a default-scheme peak moves by more than TOL (relative) per halving.
 """
 import argparse
@@ -31,6 +32,7 @@ def main():
     ap.add_argument("--halvings", type=int, default=1)
     ap.add_argument("--check", type=float, default=None)
     ap.add_argument("--bondings", default="weak,strong")
+    ap.add_argument("--limit", type=float, default=None)
     a = ap.parse_args()
     bad = 0
     print(f"{'bonding':8s} {'scheme':9s} {'dt (s)':>9s} {'peak (MPa)':>11s} {'change':>8s} "
@@ -45,6 +47,7 @@ def main():
                 subprocess.run([a.fracas, "-q", "--overwrite", "--set", f"cohesive_damage={scheme}",
                                     "--set", f"time_step={dt}", "--set", f"number_of_steps={steps}",
                                     "--set", f"output_hdf5_every={steps}", "--output", str(out),
+                                *([] if a.limit is None else ["--set", f"crack_step_limit={a.limit}"]),
                                 str(HERE / bonding)], check=True)
                 cpu = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - t0
                 s = post.summary(out, deck_dir=HERE / bonding)
