@@ -11,6 +11,8 @@ results committed in doc/fracture.md).
 
 --seeds N: mesh statistics instead: each mesh size with N node perturbations (seeds
 1..N, gen.py's third argument), the angle's mean and spread per size (issue 17).
+--topology: with --seeds, each seed also another triangulation (gmsh at an element size
+within 5 % of the size's, drawn with the seed: gen.build(topology=True)).
 """
 import argparse
 import subprocess
@@ -55,10 +57,10 @@ def mesh_statistics(a, work):
         p = gen.SENSITIVITY[name]
         angles, walls = [], []
         for seed in range(1, a.seeds + 1):
-            d = work / f"{name}_seed{seed}"
+            d = work / f"{name}_{'topo' if a.topology else 'seed'}{seed}"
             t = time.time()
             if not a.reuse:
-                gen.build(name, seed).write(d)
+                gen.build(name, seed, topology=a.topology).write(d)
                 subprocess.run([a.fracas, "-q", "--overwrite", str(d)], check=True)
             walls.append(time.time() - t)
             angles.append(measure(d, p)[0]["angle"])
@@ -75,6 +77,7 @@ def main():
     ap.add_argument("--reuse", action="store_true", help="measure the runs already in WORK_DIR")
     ap.add_argument("--seeds", type=int, default=0, help="mesh statistics: N meshes per size")
     ap.add_argument("--sizes", default="lc3.0_dt0.25,lc2.5_dt0.25,lc2.0_dt0.25")
+    ap.add_argument("--topology", action="store_true", help="with --seeds: another triangulation per seed")
     a = ap.parse_args()
     work = Path(a.work)
     if a.seeds:

@@ -47,12 +47,22 @@ def params(variant):
     return VARIANTS[variant] if variant in VARIANTS else SENSITIVITY[variant]
 
 
-def build(variant="quick", seed=1):
-    """The deck of a variant; seed: the node perturbation's (another mesh of that size)."""
+#: Element size spread of the meshes of another topology (build(topology=True)).
+LC_JITTER = 0.05
+
+
+def build(variant="quick", seed=1, topology=False):
+    """The deck of a variant; seed: the node perturbation's (another mesh of that size).
+    topology: another triangulation too, gmsh's at an element size drawn (with seed)
+    within LC_JITTER of the variant's: a node perturbation alone keeps the edges' pattern."""
+    import numpy as np
     from fracas_tools import Case
     from fracas_tools.mesh import mesh_geo
     p = params(variant)
-    mesh = perturb_nodes(mesh_geo(HERE / "plate.geo", size_factor=p["lc"] / 1.0e-3), PERTURB, seed=seed)
+    lc = p["lc"]
+    if topology:
+        lc *= 1.0 + LC_JITTER * np.random.default_rng(seed).uniform(-1.0, 1.0)
+    mesh = perturb_nodes(mesh_geo(HERE / "plate.geo", size_factor=lc / 1.0e-3), PERTURB, seed=seed)
     case = Case(gravity=(0.0, 0.0))
     case.add_material("STEEL", RHO, "ELAS", young=E, poisson=NU)
     parts = case.add_exploded_mesh(mesh, "STEEL", cracks=["notch"])
@@ -62,7 +72,7 @@ def build(variant="quick", seed=1):
             continue                   # the upper lip's element at the notch mouth shares the corner node
         b.impose_evolution("impact", 1, "vlocy", "impact.txt", ramp)
     parts.impose_velocity("symmetry", (2,))
-    c = CH_E * E / p["lc"]
+    c = CH_E * E / lc
     case.add_law("czmst", "MAL_CZM", dyfr=0.0, stfr=0.0, cn=c, ct=c, s1=SMAX, s2=SHEAR * SMAX,
                  G1=GC, G2=SHEAR * GC)
     d_c = 1.5 * SHEAR * GC / (SHEAR * SMAX) + SHEAR * SMAX / c
