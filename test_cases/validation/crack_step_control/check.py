@@ -88,6 +88,28 @@ def main():
             bad += [f"{name} {scheme}: {k}" for k in failed]
             print(f"{name:6s} {scheme:9s} {ratio:10.6f} {inc.max():8.3f} {int((sub > 1).sum()):9d} "
                   f"{int(sub.sum()):9d} {int(rej.sum()):8d}" + (f"  <- {', '.join(failed)}" if failed else ""))
+    # The unit of the limit (doc/czm.md 9), from the laws' breakpoints (czmlaws, written
+    # from czm.md): without control, opened at 0.25 of czm_step_size's lengths per step
+    # (peak to separation), a law reports crack_increment = 0.25 x that length over its own
+    # softening length at the steps inside its branch (1e-8).
+    for name in ("mp3", "mal", "th", "expo"):
+        if name not in a.laws.split(","):
+            continue
+        out = Path(a.out) / f"{name}_unit"
+        run, _ = run_case(a.fracas, name, 0.25, out, "implicit", 0.0)
+        law = gen.LAWS[name][1]
+        bp = law.breakpoints(1)
+        if law.family == "EXPO":
+            _, s_, g_, di = law._mode(1)
+            own = (g_ - 0.5 * s_ * di) / s_              # 1/phi
+        else:
+            own = bp[-1] - bp[-2]                        # the decay to separation (TH: after its plateau)
+        want = 0.25 * (bp[-1] - bp[0]) / own
+        inc = run.series["crack_increment"].max()
+        ok = abs(inc / want - 1) <= 1e-8
+        bad += [] if ok else [f"{name}: crack_increment {inc}, expected {want}"]
+        print(f"{name:6s} no control, 0.25 lengths per step: largest crack_increment {inc:.12f} "
+              f"(expected {want:.12f})" + ("" if ok else "  <- off"))
     print("== crack_step_control: " + ("all checks passed" if not bad else "FAILED: " + "; ".join(bad)))
     return 1 if bad else 0
 
