@@ -213,9 +213,18 @@ contains
         end if
       end block
     end if
-    if (stepping%unmet > 0) call warn(itoa(stepping%unmet)//' sub-steps opened a damaging cohesive zone by more '// &
-      'than crack_step_limit at the shortest step allowed (time_step/2^crack_step_cuts): raise crack_step_cuts '// &
-      '(series/crack_increment in fracas.h5 shows where)')
+    if (stepping%unmet > 0) then
+      block
+        character(len=:), allocatable :: msg
+        msg = itoa(stepping%unmet)//' sub-steps opened a damaging cohesive zone by more than crack_step_limit '// &
+              'at the shortest step allowed (time_step/2^crack_step_cuts): raise crack_step_cuts '// &
+              '(series/crack_increment in fracas.h5 shows where)'
+        ! An accuracy target not met is, for the exit status, an unconverged run.
+        if (deck%run%nlgs_unconverged == 'fail' .and. unconverged == 0) &
+          call stop_run(msg//' (nlgs_unconverged = fail)', exit_unconverged)
+        call warn(msg)
+      end block
+    end if
     if (unconverged > 0) then
       block
         character(len=300) :: msg
@@ -340,7 +349,8 @@ contains
       '  1  an error was reported (bad input, a failure during the run)', &
       '  2  an error of the Fortran run-time library (a bug: please report it)', &
       '  3  NLGS steps did not converge and nlgs_unconverged is fail (the run went to', &
-      '     its end) or stop (the run stopped at the first such step)', &
+      '     its end) or stop (the run stopped at the first such step); with fail also', &
+      '     when crack_step_limit could not be met at the shortest step', &
       '  a signal (e.g. 137 for SIGKILL): fracas.h5 keeps complete = 0'
   end subroutine usage
 end program fracas

@@ -110,6 +110,15 @@ def main():
         bad += [] if ok else [f"{name}: crack_increment {inc}, expected {want}"]
         print(f"{name:6s} no control, 0.25 lengths per step: largest crack_increment {inc:.12f} "
               f"(expected {want:.12f})" + ("" if ok else "  <- off"))
+    # A limit that cannot be met (one halving allowed) with --fail-unconverged: exit status 3.
+    out = Path(a.out) / "unmet"
+    study.deck("mp3", a.steps, out)
+    rc = subprocess.run([a.fracas, "-q", "--overwrite", "--fail-unconverged", "--set", f"crack_step_limit={a.limit}",
+                         "--set", "crack_step_cuts=1", str(out)], capture_output=True, text=True)
+    ok = rc.returncode == 3 and "crack_step_limit" in rc.stderr
+    bad += [] if ok else [f"limit not met: exit status {rc.returncode}, expected 3"]
+    print(f"limit not met (crack_step_cuts 1) with --fail-unconverged: exit status {rc.returncode}"
+          + ("" if ok else "  <- expected 3"))
     print("== crack_step_control: " + ("all checks passed" if not bad else "FAILED: " + "; ".join(bad)))
     return 1 if bad else 0
 
