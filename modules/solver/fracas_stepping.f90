@@ -43,7 +43,7 @@ contains
     integer(i8) :: pos, whole, span
     integer :: level, substep
     real(wp) :: t_start
-    logical :: last, converged
+    logical :: last, nlgs_converged, newton_converged
     if (ctl%limit <= 0.0_wp) then
       call scene_step(sc, rep, status)
       return
@@ -52,7 +52,8 @@ contains
     whole = 2_i8**ctl%max_cuts
     pos = 0
     level = min(sc%step_level, ctl%max_cuts)
-    converged = .true.
+    nlgs_converged = .true.
+    newton_converged = .true.
     rep%substeps = 0
     do
       span = 2_i8**(ctl%max_cuts - level)
@@ -75,7 +76,8 @@ contains
       end if
       if (sub%crack_increment > ctl%limit) ctl%unmet = ctl%unmet + 1
       call keep_state(rep, sub)
-      converged = converged .and. sub%nlgs%converged .and. sub%newton_converged
+      nlgs_converged = nlgs_converged .and. sub%nlgs%converged
+      newton_converged = newton_converged .and. sub%newton_converged
       rep%crack_increment = max(rep%crack_increment, sub%crack_increment)
       pos = pos + span
       ! Grow back once the crack has slowed, where the longer step fits.
@@ -83,8 +85,8 @@ contains
         level = level - 1
       if (pos == whole) exit
     end do
-    rep%nlgs%converged = converged
-    rep%newton_converged = converged
+    rep%nlgs%converged = nlgs_converged
+    rep%newton_converged = newton_converged
     ! The step ends on the run's time grid, as an uncut step does.
     if (rep%substeps > 1) sc%time = t_start + sc%h_step
     sc%step_level = level
