@@ -118,7 +118,13 @@ def main():
     ap.add_argument("--fracas", default=str(ROOT / "build" / "release" / "bin" / "fracas"))
     ap.add_argument("--csv", default=None)
     ap.add_argument("--plot", default=None)
+    ap.add_argument("--from-csv", default=None, help="plot the rows of a CSV written before; nothing run")
     a = ap.parse_args()
+    if a.from_csv:
+        with open(a.from_csv) as f:
+            rows = [dict(r, cpu_s=float(r["cpu_s"]), rel_error=float(r["rel_error"])) for r in csv.DictReader(f)]
+        plot(rows, a.plot)
+        return
     work = Path(a.work)
     work.mkdir(parents=True, exist_ok=True)
     rows = []
@@ -162,18 +168,25 @@ def plot(rows, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     keys = sorted({(r["case"], r["quantity"]) for r in rows})
-    fig, axes = plt.subplots(1, len(keys), figsize=(3.2 * len(keys), 3.2), squeeze=False)
-    for ax, (case, q) in zip(axes[0], keys):
-        rs = [r for r in rows if r["case"] == case and r["quantity"] == q and not r["run"].startswith("reference")]
+    ncol = (len(keys) + 1) // 2
+    fig, axes = plt.subplots(2, ncol, figsize=(3.3 * ncol, 6.4), squeeze=False)
+    for ax in axes.flat[len(keys):]:
+        ax.axis("off")
+    for ax, (case, q) in zip(axes.flat, keys):
+        # runs identical to the reference (error 0) have no place on a log scale
+        rs = [r for r in rows if r["case"] == case and r["quantity"] == q and r["rel_error"] > 0]
         fixed = [r for r in rs if r["run"].startswith("fixed")]
         ctl = [r for r in rs if r["run"].startswith("control")]
-        floor = 1e-5
-        ax.loglog([r["cpu_s"] for r in fixed], [max(r["rel_error"], floor) for r in fixed], "o-", label="fixed h/2^k")
-        ax.loglog([r["cpu_s"] for r in ctl], [max(r["rel_error"], floor) for r in ctl], "s", label="controlled at h")
+        ax.loglog([r["cpu_s"] for r in fixed], [r["rel_error"] for r in fixed], "o-", label="fixed h, h/2, ...")
+        ax.loglog([r["cpu_s"] for r in ctl], [r["rel_error"] for r in ctl], "s", label="crack_step_limit at h")
+        for r in ctl:
+            ax.annotate(r["run"].split()[1], (r["cpu_s"], r["rel_error"]), fontsize=7, xytext=(3, 3),
+                        textcoords="offset points")
         ax.set_title(f"{case}\n{q}", fontsize=8)
         ax.set_xlabel("CPU (s)", fontsize=8)
         ax.tick_params(labelsize=7)
-    axes[0][0].set_ylabel("relative error vs reference")
+    for row in axes:
+        row[0].set_ylabel("relative error vs reference", fontsize=8)
     axes[0][0].legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
