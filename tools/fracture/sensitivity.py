@@ -53,9 +53,10 @@ def mesh_statistics(a, work):
     """The crack angle on a.seeds meshes of each size (seeded node perturbations)."""
     print("| lc (mm) | seeds | angles (°) | mean (°) | spread (std, °) | run time per mesh (s) |")
     print("| --- | --- | --- | --- | --- | --- |")
+    sizes = {}
     for name in a.sizes.split(","):
         p = gen.SENSITIVITY[name]
-        angles, walls = [], []
+        angles, walls, paths = [], [], []
         for seed in range(1, a.seeds + 1):
             d = work / f"{name}_{'topo' if a.topology else 'seed'}{seed}"
             t = time.time()
@@ -63,10 +64,48 @@ def mesh_statistics(a, work):
                 gen.build(name, seed, topology=a.topology).write(d)
                 subprocess.run([a.fracas, "-q", "--overwrite", str(d)], check=True)
             walls.append(time.time() - t)
-            angles.append(measure(d, p)[0]["angle"])
+            m, cracks = measure(d, p)
+            angles.append(m["angle"])
+            paths.append(cracks)
         ang = np.array(angles)
+        sizes[p["lc"]] = (ang, paths)
         print(f"| {p['lc'] * 1e3:g} | {a.seeds} | {', '.join(f'{x:.1f}' for x in ang)} | {np.nanmean(ang):.1f} | "
-              f"{np.nanstd(ang):.1f} | {np.mean(walls):.0f} |", flush=True)
+              f"{np.nanstd(ang, ddof=1):.1f} | {np.mean(walls):.0f} |", flush=True)
+    if a.png:
+        plot_statistics(sizes, a.png)
+
+
+def plot_statistics(sizes, png):
+    """Angle per mesh against the element size (mean and sample std), and the crack paths
+    of every mesh of each size."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import LineCollection
+    fig, axes = plt.subplots(1, len(sizes) + 1, figsize=(3.6 * (len(sizes) + 1), 3.8))
+    ax = axes[0]
+    ax.axhspan(65, 75, color="0.9", label="70 ± 5 (experiments)")
+    for lc, (ang, _) in sorted(sizes.items()):
+        ax.plot([lc * 1e3] * len(ang), ang, "o", color="C0", alpha=0.6)
+        ax.errorbar(lc * 1e3 + 0.08, np.nanmean(ang), yerr=np.nanstd(ang, ddof=1), fmt="s", color="C3", capsize=4)
+    ax.set_xlabel("element size lc (mm)")
+    ax.set_ylabel("crack angle (deg)")
+    ax.set_title("one dot per mesh; mean ± std", fontsize=9)
+    ax.legend(fontsize=7, loc="lower left")
+    for ax, (lc, (ang, paths)) in zip(axes[1:], sorted(sizes.items(), reverse=True)):
+        for k, cr in enumerate(paths):
+            ax.add_collection(LineCollection(cr["points"][cr["segments"]] * 1e3, colors=[plt.cm.tab10(k)],
+                                             linewidths=1.0))
+        ax.plot([0, 50], [25, 25], "k", lw=2)
+        th = np.radians(70.0)
+        ax.plot([50, 50 + 40 * np.cos(th)], [25, 25 + 40 * np.sin(th)], "k--", lw=0.8)
+        ax.set_xlim(30, 100)
+        ax.set_ylim(10, 100)
+        ax.set_aspect("equal")
+        ax.set_title(f"lc {lc * 1e3:g} mm: {', '.join(f'{x:.0f}' for x in ang)} deg", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    print(f"wrote {png}")
 
 
 def main():
