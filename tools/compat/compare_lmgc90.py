@@ -28,7 +28,6 @@ import os
 import re
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from fracas_tools.datbox import read_dof  # noqa: E402
 
 NUM = re.compile(r"[-+]?\d*\.\d+[DdEe][-+]\d+")

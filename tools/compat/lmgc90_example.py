@@ -27,7 +27,6 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from fracas_tools.outbox import read_dof_file, read_vloc_rloc  # noqa: E402
 
 

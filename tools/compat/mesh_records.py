@@ -16,7 +16,6 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from fracas_tools import outbox  # noqa: E402
 
 NUM = re.compile(r"[-+]?\d*\.\d+(?:[DdEe][-+]?\d+)?")

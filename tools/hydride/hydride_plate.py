@@ -12,7 +12,7 @@ starts the crack at the middle of the edge it cuts.
 
 Materials, laws and their sources: doc/hydrided_zircaloy.md. Everything here is in SI.
 
-    python3 tools/hydride/hydride_plate.py CASE_DIR --seed 3 --bonding weak --h 0.5e-6
+    build/release/bin/fracas-python tools/hydride/hydride_plate.py CASE_DIR --seed 3 --bonding weak --h 0.5e-6
 
 The same seed gives the same hydrides at any element size (the placement does not
 depend on h), and the same deck byte for byte (gmsh runs on one thread).
@@ -27,7 +27,6 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent))
 from fracas_tools import Case  # noqa: E402
 from fracas_tools.mesh import mecax_sets, mesh_from_gmsh  # noqa: E402
 from fracas_tools.postpro_deck import PostPro, mecax_set_rows  # noqa: E402

@@ -3,7 +3,7 @@
 rounded bars, and the force chains (segments between the centres of the two
 bodies of each loaded contact, width proportional to the normal force).
 
-    /usr/bin/python3 tools/regression/plot_packing.py RUN_DIR --case CASE_DIR -o out.png
+    build/release/bin/fracas-python tools/regression/plot_packing.py RUN_DIR --case CASE_DIR -o out.png
         [--snapshot -1] [--no-forces] [--title TEXT] [--series series.png]
 
 With ``--series`` a second figure shows the time series of the run: kinetic energy,
@@ -17,7 +17,6 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import tagged  # noqa: E402
 
 

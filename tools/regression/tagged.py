@@ -5,7 +5,7 @@ From a run's OUTBOX/fracas.h5 (and the case's DATBOX/BODIES.DAT, to tell disks
 from walls) compute named, physically meaningful statistics and write them one
 per line as ``name : value``::
 
-    /usr/bin/python3 tools/regression/tagged.py RUN_DIR [--case CASE_DIR] [-o run.tag]
+    build/release/bin/fracas-python tools/regression/tagged.py RUN_DIR [--case CASE_DIR] [-o run.tag]
 
 RUN_DIR is the directory that holds OUTBOX/ (the case directory, or the
 ``--output`` directory of the run). CASE_DIR (default: the ``case_dir`` attribute
@@ -14,7 +14,7 @@ of fracas.h5, then RUN_DIR) holds DATBOX/.
 A reference is made (never by hand) with tools/regression/regenerate.py (runs the
 case, then calls this), or directly from a finished run::
 
-    /usr/bin/python3 tools/regression/tagged.py RUN_DIR --case CASE_DIR \\
+    build/release/bin/fracas-python tools/regression/tagged.py RUN_DIR --case CASE_DIR \\
         --make-reference CASE_DIR/reference.tag --tolerances CASE_DIR/tolerances.txt
 
 which writes the run's values together with the tolerance of every tag, read
@@ -81,7 +81,6 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from fracas_tools.results import Run  # noqa: E402  (the one reader of fracas.h5)
 
 FORMAT_VERSION = 1
@@ -488,7 +487,7 @@ def main(argv=None):
     if a.make_reference:
         if not a.tolerances:
             p.error("--make-reference needs --tolerances")
-        cmd = ("/usr/bin/python3 tools/regression/tagged.py RUN_DIR --case CASE_DIR "
+        cmd = ("build/release/bin/fracas-python tools/regression/tagged.py RUN_DIR --case CASE_DIR "
                "--make-reference CASE_DIR/reference.tag --tolerances CASE_DIR/tolerances.txt")
         make_reference(tags, read_tolerances(a.tolerances), a.make_reference, cmd)
         print(f"tagged.py: wrote {a.make_reference} ({len(tags)} tags)")

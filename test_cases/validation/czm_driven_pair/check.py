@@ -11,8 +11,7 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 ROOT = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(ROOT / "tools" / "czm"))
-from czmrun import CzmRun  # noqa: E402
+from fracas_tools.results import Results  # noqa: E402
 
 H, V, THETA = 1.0e-4, 1.0e-2, 0.5      # COMMAND.DAT, DRV_DOF.DAT
 CN, W, L = 1.0e10, 40.0, 0.5           # TACT_BEHAV.DAT (IQS_MAC_CZM, b = 0); L: half the 1 m face
@@ -33,7 +32,7 @@ def closed_form(nsteps):
 
 
 def main():
-    run = CzmRun(sys.argv[1])
+    run = Results(sys.argv[1])
     pair = run.pair(2, 1)
     un, beta, rn = closed_form(len(run.step))
     k = run.step - 1

@@ -15,9 +15,8 @@ import re
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from meshdeck import Case, node_id, one_based, quads, rect_grid, triangles  # noqa: E402
-from valmesh import Checker, args, run_fracas  # noqa: E402
+from fracas_tools.valmesh import Case, node_id, one_based, quads, rect_grid, triangles  # noqa: E402
+from fracas_tools.valmesh import Checker, args, run_fracas  # noqa: E402
 
 NUM = re.compile(r"[-+]?\d*\.\d+[DE][-+]\d+")
 E, NU, RHO = 2.0e11, 0.3, 7800.0
