@@ -24,7 +24,7 @@ from fracas_tools.results import Results
 sys.dont_write_bytecode = True
 
 DT = 1.0e-4              # time step (s)
-STEPS = 400              # steps of the driven path
+STEPS = 200              # steps of the driven path
 SLIP = 0.5               # ut / un along the path: mixity m = 0.2, both modes' parameters count
 # Opening velocity factor against the step number: open, close back a little (secant
 # unloading, beta frozen), open again past full separation. (No step of the path has a
@@ -32,7 +32,7 @@ SLIP = 0.5               # ut / un along the path: mixity m = 0.2, both modes' p
 # within the step, a step that damages while the springs hardly stretch has an
 # ill-conditioned traction factor, work / stretch with both ~0: a 1e-5 disagreement
 # measured on TH_CZM with a turn of zero motion.)
-PATH = [(0, 1.0), (200, 1.0), (201, -2.0), (220, -2.0), (221, 1.0), (STEPS + 1, 1.0)]
+PATH = [(0, 1.0), (100, 1.0), (101, -2.0), (110, -2.0), (111, 1.0), (STEPS + 1, 1.0)]
 
 MAL = dict(cn=1.0e11, ct=5.0e10, s1=1.0e6, s2=2.0e6, G1=40.0, G2=100.0)
 # Every cohesive law the solver runs (io/read_tact_behav.f90, solver flag), parameters of
