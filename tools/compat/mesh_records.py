@@ -16,6 +16,7 @@ import numpy as np
 
 from fracas_tools import datbox as datbox_reader
 from fracas_tools import outbox
+from fracas_tools.mailx import ELEMENTS
 from fracas_tools.postpro_deck import read_postpro
 
 
@@ -293,8 +294,9 @@ class NodeSets:
         st, su = [], []
         for e, (kind, conn, _) in enumerate(mesh.elements):
             rows = gpv[(b, e + 1)]
-            per_gp = len(rows) // (3 if kind == "T3" else 4)
-            pts = rows[0::per_gp][: (1 if kind == "T3" else 4)]
+            el = ELEMENTS[kind + "xxx"]          # the element table: points printed, state points
+            per_gp = len(rows) // el.gauss_gpv
+            pts = rows[0::per_gp][:el.gauss]
             st.append([(p[0], p[1], p[2]) for p in pts])
             su.append([ulp7(p[:3]) for p in pts])
         return st, su

@@ -43,6 +43,8 @@ import math
 
 import numpy as np
 
+from .mailx import ELEMENT_CORNERS, element_edges
+
 __all__ = ["Law", "mac_rate_curve", "ramp_schedule", "BETA_BROKEN",
            "perturb_nodes", "safe_alert", "mp3_separation_opening", "see_alert", "smooth_ramp"]
 
@@ -67,10 +69,7 @@ def perturb_nodes(mesh, fraction, seed=1):
     shortest = np.full(len(xy), np.inf)
     around = [[] for _ in range(len(xy))]
     for e, (kind, nodes) in enumerate(mesh.elements):
-        nc = 3 if kind.startswith("T") else 4
-        c = nodes[:nc]
-        for k in range(nc):
-            a, b = c[k], c[(k + 1) % nc]
+        for a, b, _ in element_edges(kind, nodes):
             d = float(np.hypot(*(xy[a] - xy[b])))
             shortest[a] = min(shortest[a], d)
             shortest[b] = min(shortest[b], d)
@@ -78,7 +77,7 @@ def perturb_nodes(mesh, fraction, seed=1):
 
     def area(e, pts):
         kind, nodes = mesh.elements[e]
-        c = pts[list(nodes[:3 if kind.startswith("T") else 4])]
+        c = pts[list(nodes[:ELEMENT_CORNERS[kind]])]
         return 0.5 * np.sum(c[:, 0] * np.roll(c[:, 1], -1) - np.roll(c[:, 0], -1) * c[:, 1])
 
     for n in range(len(xy)):
@@ -106,10 +105,8 @@ def safe_alert(mesh, apab=(0.25, 0.75)):
     broken."""
     edges_at = {}
     for kind, nodes in mesh.elements:
-        nc = 3 if kind.startswith("T") else 4
-        c = nodes[:nc]
-        for k in range(nc):
-            e = (c[k], c[(k + 1) % nc])
+        for a, b, _ in element_edges(kind, nodes):
+            e = (a, b)
             for n in e:
                 edges_at.setdefault(n, set()).add((min(e), max(e)))
     xy = mesh.nodes
@@ -126,9 +123,11 @@ def safe_alert(mesh, apab=(0.25, 0.75)):
 
 
 def mp3_separation_opening(gc, smax, c):
-    """Opening at full separation of an MP3_CZM interface (energy gc, strength smax,
-    stiffness c): the elastic opening smax / c plus the softening branch's 1.5 gc / smax
-    (czm.md). Alert distances of the cohesive see rules are set from it."""
+    """An upper bound of the opening at full separation of an MP3_CZM interface (energy
+    gc, strength smax, stiffness c in both directions): smax / c + 1.5 gc / smax, the
+    law's own opening Law.mp3(c, c, smax, gc).d_end(1) = 0.25 smax / c + 1.5 gc / smax
+    plus 0.75 smax / c. Alert distances of the cohesive see rules are set from it (kept
+    as the decks were generated with it; the law itself is Law)."""
     return 1.5 * gc / smax + smax / c
 
 
