@@ -89,3 +89,11 @@ foreach(mode I II)
                          FIXTURES_REQUIRED "${name}_deck;${name}" LABELS "quick;validation;czm")
   endforeach()
 endforeach()
+# The one Python implementation of the laws (fracas_tools.cohesive.Law) against the
+# solver, every cohesive law it runs (MAC_CZM, IQS_MAC_CZM, MP3_CZM, (IQS_)MAL_CZM,
+# (IQS_)TH_CZM, (IQS_)EXPO_CZM), both damage schemes, on a driven pair opened and slid
+# (mixed mode, with a partial closing): beta, reactions and energies at every step to
+# round-off (czm_law_mirror/README.md), so that a drift of either side is red.
+add_test(NAME validation.czm_law_mirror
+         COMMAND ${FRACAS_PYTHON} ${_czm}/czm_law_mirror/mirror.py ${FRACAS_BIN} ${CMAKE_CURRENT_BINARY_DIR}/czm_law_mirror)
+set_tests_properties(validation.czm_law_mirror PROPERTIES LABELS "medium;validation;czm")

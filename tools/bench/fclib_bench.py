@@ -12,8 +12,8 @@ tolerance and solver), curves.csv (error after k sweeps, both solvers), and with
 --plots the PNGs doc/img/bench_fclib_profile_<tol>.png, doc/img/bench_fclib_curves.png,
 and with --doc the tables in doc/benchmarks.md (between the fclib markers).
 
-  /usr/bin/python3 tools/bench/fclib_bench.py --fracas build/release/bin/fracas-fclib --plots --doc
-  /usr/bin/python3 tools/bench/fclib_bench.py --ours-only --variants "plain=--accel 0" --tols 1e-8   # quick look
+  build/release/bin/fracas-python tools/bench/fclib_bench.py --fracas build/release/bin/fracas-fclib --plots --doc
+  build/release/bin/fracas-python tools/bench/fclib_bench.py --ours-only --variants "plain=--accel 0" --tols 1e-8   # quick look
 """
 import argparse
 import csv

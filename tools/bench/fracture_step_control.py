@@ -18,7 +18,7 @@ measure against the CPU time of the run:
 The error of a run is its distance to the finest run of the case (the smallest fixed
 step with the control at the smallest limit); dcb's energy is also compared with G_c.
 
-    /usr/bin/python3 tools/bench/fracture_step_control.py [--cases a,b] [--work DIR]
+    build/release/bin/fracas-python tools/bench/fracture_step_control.py [--cases a,b] [--work DIR]
         [--fracas BIN] [--csv FILE] [--plot PNG]
 
 Finished runs in --work (default /tmp/fracas_fracture_bench) are reused. About 40 minutes
@@ -32,8 +32,6 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools" / "hydride"))
-sys.path.insert(0, str(ROOT / "tools"))
 
 FRACTURE = ROOT / "test_cases" / "validation_fracture"
 HYDRIDE = ROOT / "test_cases" / "validation" / "hydrided_plate"
@@ -53,7 +51,8 @@ def checker_value(text, name):
 
 def hydride_metrics(bonding):
     def metrics(run_dir):
-        import hydride_post as post
+        from fracas_tools.scripts import load
+        post = load(ROOT / "tools" / "hydride" / "hydride_post.py")
         s = post.summary(run_dir, deck_dir=HYDRIDE / bonding)
         return {"peak stress (MPa)": s["peak_stress"] / 1e6, "damage energy (J/m)": s["energies"]["damage"]}
     return metrics

@@ -2,7 +2,7 @@
 """Plot the NLGS kernel micro-benchmark (bench/kernel_bench.f90).
 
   build/release/bin/fracas-kernel-bench --csv bench/results/kernel_1.csv   # (a few times)
-  /usr/bin/python3 tools/bench/kernel_plot.py doc/img/bench_kernel.png bench/results/kernel_*.csv
+  build/release/bin/fracas-python tools/bench/kernel_plot.py doc/img/bench_kernel.png bench/results/kernel_*.csv
 
 Several CSVs (runs at different moments) are merged keeping the fastest figure of each
 configuration (other jobs on a shared machine only slow a run down); the merged table

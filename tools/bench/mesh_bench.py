@@ -24,10 +24,10 @@ by the ratio loop_cpu_seconds / loop_seconds of the run (root attributes written
 driver); setup and deck reading from setup_cpu_seconds and read_cpu_seconds. The load
 average is recorded before and after every run.
 
-    /usr/bin/python3 tools/bench/mesh_bench.py big            # runs + bench/results/mesh_big.json
-    /usr/bin/python3 tools/bench/mesh_bench.py exploded       # bench/results/mesh_exploded.json
-    /usr/bin/python3 tools/bench/mesh_bench.py lmgc90 --repeat 3
-    /usr/bin/python3 tools/bench/mesh_bench.py plot           # doc/img/bench_mesh_*.png, tables
+    build/release/bin/fracas-python tools/bench/mesh_bench.py big            # runs + bench/results/mesh_big.json
+    build/release/bin/fracas-python tools/bench/mesh_bench.py exploded       # bench/results/mesh_exploded.json
+    build/release/bin/fracas-python tools/bench/mesh_bench.py lmgc90 --repeat 3
+    build/release/bin/fracas-python tools/bench/mesh_bench.py plot           # doc/img/bench_mesh_*.png, tables
     options: --fracas BIN (default build/release/bin/fracas), --work DIR (default
     /tmp/fracas_mesh_bench), --sizes a,b,c (ny of the block, nx = ny of the plate),
     --steps N, --callgrind MAX_SIZE (also count instructions per steady step of each
@@ -48,7 +48,6 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "tools"))
 RESULTS = REPO / "bench" / "results"
 IMG = REPO / "doc" / "img"
 DECKS = REPO.parent / "shared" / "lmgc90_decks"
@@ -166,7 +165,6 @@ def run_fracas(fracas, args, out_dir):
 def read_h5(out_dir):
     """Totals and per-step figures of a run's fracas.h5: CPU seconds of each part
     (the wall-clock series times loop_cpu / loop wall), setup and reading."""
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
     from fracas_tools.results import Run         # the one reader of fracas.h5
     with Run(out_dir) as run:
         a = {k: float(v) for k, v in run.attrs.items() if k.endswith("seconds")}

@@ -4,7 +4,7 @@ reads bench/results/mesh_{big,exploded,lmgc90}.json, writes doc/img/bench_mesh_b
 doc/img/bench_mesh_exploded.png and bench/results/mesh_tables.md (the tables of
 doc/benchmarks.md section 6).
 
-    /usr/bin/python3 tools/bench/mesh_bench.py plot
+    build/release/bin/fracas-python tools/bench/mesh_bench.py plot
 """
 
 import json

@@ -21,7 +21,7 @@ machine; fracas also times its own writes (the line 'fracas: output: ...' at the
 of a run: CPU time per kind), kept as own_account_* (the figures to trust). Bytes are the sizes of the files
 written.
 
-    /usr/bin/python3 tools/bench/output_cost.py [--fracas BIN] [--work DIR] [--only vtk,hdf5,...]
+    build/release/bin/fracas-python tools/bench/output_cost.py [--fracas BIN] [--work DIR] [--only vtk,hdf5,...]
                                                 [--json OUT.json] [--legacy]
 
 --legacy: the binary predates output_vtk_precision (the keys this script sets are

@@ -23,8 +23,8 @@ Per-grain quantities of a chaotic flow differ between any two equivalent runs: t
 differ only in the contact order (stored, reversed, colored, shuffled) at dt = 1e-3
 and Quad 1e-5; an error below the floor says nothing.
 
-    /usr/bin/python3 tools/bench/scene_speed_error.py                  # runs (cached) + table
-    /usr/bin/python3 tools/bench/scene_speed_error.py --plots --csv bench/results/scene_speed_error.csv
+    build/release/bin/fracas-python tools/bench/scene_speed_error.py                  # runs (cached) + table
+    build/release/bin/fracas-python tools/bench/scene_speed_error.py --plots --csv bench/results/scene_speed_error.csv
     options: --fracas BIN (default build/release/bin/fracas), --work DIR (default
     /tmp/fracas_scene_bench; finished runs are reused), --jobs N (parallel runs,
     default 2), --scenes disks,polygons, --rerun (ignore cached runs)
@@ -47,8 +47,6 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "tools"))
-sys.path.insert(0, str(REPO / "tools" / "regression"))
 
 SNAP_EVERY_T = 0.02          # snapshot period (s): same physical times for every dt
 T_SHORT = (0.06, 0.10)       # short horizons for the positions (s)
@@ -189,7 +187,9 @@ def cost_guess(s):
 
 def load(out, case_dir):
     """What the error measures need from a run (fracas.h5 + BODIES.DAT)."""
-    from tagged import Run, body_contactor_kinds, gravity
+    from fracas_tools.scripts import load as load_script
+    tagged = load_script(REPO / "tools" / "regression" / "tagged.py")
+    Run, body_contactor_kinds, gravity = tagged.Run, tagged.body_contactor_kinds, tagged.gravity
     kinds = body_contactor_kinds(Path(case_dir) / "DATBOX" / "BODIES.DAT")
     g = gravity(Path(case_dir) / "DATBOX" / "BULK_BEHAV.DAT")
     with Run(Path(out) / "OUTBOX" / "fracas.h5") as f:

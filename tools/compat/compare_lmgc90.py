@@ -25,51 +25,22 @@ Prints one line per quantity and exits 1 if any fails.
 import argparse
 import math
 import os
-import re
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from fracas_tools.datbox import read_dof  # noqa: E402
-
-NUM = re.compile(r"[-+]?\d*\.\d+[DdEe][-+]\d+")
-
+from fracas_tools.outbox import read_vloc_rloc  # noqa: E402
 
 def read_vloc(path):
-    """Vloc_Rloc.OUT.n -> dict key -> dict(status, rlt, rln); key = (type, cd body,
-    cd contactor, cd vertex (polygons, else 0), an body, an contactor)."""
-    lines = open(path).read().splitlines()
+    """Vloc_Rloc.OUT.n -> dict key -> dict(status, rlt, rln, internals, coo); key = (type,
+    cd body, cd contactor, cd vertex (polygon candidates, else 0), an body, an contactor).
+    Read by fracas_tools.outbox (the one reader of those records)."""
     out = {}
-    i = 0
-    while i < len(lines):
-        if lines[i].startswith("$icdan"):
-            inter = lines[i][8:13]
-            ids = lines[i + 2]
-            f = ids.split()
-            # id line: RBDY2 n DISKx n behav RBDY2 n DISKx n status iadj (PL types add columns)
-            words = [w for w in f]
-            cdbdy, cdtac = int(words[1]), int(words[3])
-            j = 4
-            cdver = 0
-            if words[j] in ("CDVER",):
-                cdver = int(words[j + 1])
-                j += 2
-            j += 1  # behav
-            anbdy, antac = int(words[j + 1]), int(words[j + 3])
-            status = words[-2]
-            vals = [float(x.replace("D", "E").replace("d", "e")) for x in NUM.findall(lines[i + 3])]
-            key = (inter, cdbdy, cdtac, cdver, anbdy, antac)
-            internals = []
-            coo = None
-            j = i + 4
-            while j < len(lines) and not lines[j].startswith("$icdan"):
-                if lines[j].startswith("#taille_ele") and j + 1 < len(lines):
-                    internals = [float(x.replace("D", "E")) for x in NUM.findall(lines[j + 1])]
-                if lines[j][29:34] == "coo1=":
-                    coo = [float(x.replace("D", "E")) for x in NUM.findall(lines[j])][:2]
-                j += 1
-            out[key] = dict(status=status, rlt=vals[0], rln=vals[1], internals=internals, coo=coo)
-            i += 3
-        i += 1
+    for r in read_vloc_rloc(path).records:
+        cdver = r.cdver if r.inter.startswith("PL") and r.cdver is not None else 0
+        key = (r.inter, r.icdbdy, r.icdtac, cdver, r.ianbdy, r.iantac)
+        out[key] = dict(status=r.status, rlt=float(r.rloc[0]), rln=float(r.rloc[1]),
+                        internals=[] if r.internals is None else [float(x) for x in r.internals],
+                        coo=None if r.coor is None else [float(x) for x in r.coor[:2]])
     return out
 
 

@@ -42,8 +42,6 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from mesh_records import (NodeSets, read_dof, read_gpv, read_vloc, ulp7, ulp8)  # noqa: E402
 from fracas_tools.checks import Checker  # noqa: E402
 

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from fracas_tools.datbox import read_bodies  # noqa: E402
 from fracas_tools.outbox import read_dof_file, read_vloc_rloc  # noqa: E402
 
 
@@ -132,7 +132,8 @@ def node_x(path, body, node):
 
 def cl_points(bodies):
     """Number of CLxxx candidate points of BODIES.DAT (each line, continuation lines too)."""
-    return sum(1 for ln in Path(bodies).read_text().splitlines() if ln[1:6] == "CLxxx")
+    return sum(len(c.points) for b in read_bodies(bodies) if b.model == "MAILx"
+               for c in b.contactors if hasattr(c, "points"))
 
 
 def cmd_points(a):

@@ -10,24 +10,14 @@ Printed precision: LMGC90 writes OUTBOX values as D14.7 (0.ddddddd D+ee, 7
 significant digits) and POSTPRO values as ES14.7 (d.ddddddd E+ee, 8 digits).
 :func:`ulp7` is one unit of the 7th significant digit of a value so printed.
 """
-import re
-import sys
 from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from fracas_tools import outbox  # noqa: E402
-
-NUM = re.compile(r"[-+]?\d*\.\d+(?:[DdEe][-+]?\d+)?")
-
-
-def _f(s):
-    return float(s.replace("D", "E").replace("d", "e"))
-
-
-def _nums(line):
-    return [_f(x) for x in NUM.findall(line)]
+from fracas_tools import datbox as datbox_reader
+from fracas_tools import outbox
+from fracas_tools.mailx import ELEMENTS
+from fracas_tools.postpro_deck import read_postpro
 
 
 def ulp7(v):
@@ -62,99 +52,47 @@ class Mesh:
 
 
 def read_meshes(datbox):
-    """BODIES.DAT -> dict MAILx body number -> Mesh (RBDY2 bodies skipped)."""
+    """BODIES.DAT -> dict MAILx body number -> Mesh (RBDY2 bodies skipped; T3xxx, Q4xxx
+    and Q4P0x elements, the last read as Q4), read by fracas_tools.datbox."""
     meshes = {}
-    lines = Path(datbox, "BODIES.DAT").read_text(encoding="latin-1").splitlines()
-    i, cur, rank, last = 0, None, 0, None
-    n_mailx = 0
-    while i < len(lines):
-        t = lines[i]
-        if t.startswith("$bdyty"):
-            model = lines[i + 1].split()[0]
-            if model == "MAILx":
-                n_mailx += 1
-                cur = Mesh(n_mailx)
-                meshes[n_mailx] = cur
-            else:
-                cur = None
-            rank, last = 0, None
-            i += 2
+    for body in datbox_reader.read_bodies(Path(datbox, "BODIES.DAT")):
+        if body.model != "MAILx":
             continue
-        if cur is not None:
-            w = t.split()
-            if w and w[0] in ("T3xxx", "Q4xxx", "Q4P0x") and len(w) > 3 and w[2] == "nodes":
-                mat = lines[i + 1].split()[3]
-                cur.elements.append((w[0][:2], [int(x) - 1 for x in w[3:]], mat))
-                i += 2
-                continue
-            if w and w[0] == "NO2xx":
-                cur.nodes.append(_nums(t)[:2])
-            elif t[1:6] == "CLxxx":
-                rank += 1
-                m = re.search(r"noda=\s*(\d+)\s+nodb=\s*(\d+)\s+apab=\s*(\S+)", t)
-                cur.candidates[rank] = (int(m.group(1)) - 1, int(m.group(2)) - 1, _f(m.group(3)))
-                last = "CL"
-            elif t[1:6] == "ALpxx":
-                m = re.search(r"noda=\s*(\d+)\s+nodb=\s*(\d+)", t)
-                seg = (int(m.group(1)) - 1, int(m.group(2)) - 1)
-                if t[0] == "+" and last == "AL":
-                    cur.polylines[rank].append(seg)
-                else:
-                    rank += 1
-                    cur.polylines[rank] = [seg]
-                last = "AL"
-        i += 1
-    for m in meshes.values():
-        m.nodes = np.array(m.nodes, dtype=float)
+        m = meshes[body.number] = Mesh(body.number)
+        m.nodes = np.asarray(body.nodes, dtype=float)
+        m.elements = [(e.kind[:2], [int(n) - 1 for n in e.nodes], e.material) for e in body.elements
+                      if e.kind in ("T3xxx", "Q4xxx", "Q4P0x")]
+        for rank, (c, k) in enumerate(body.tactors(), start=1):
+            if k is None:
+                m.polylines[rank] = [(int(a) - 1, int(b) - 1) for a, b in zip(c.nodes[:-1], c.nodes[1:])]
+            else:
+                a, b, apab = c.points[k]
+                m.candidates[rank] = (int(a) - 1, int(b) - 1, float(apab))
     return meshes
 
 
 def read_materials(datbox):
-    """BULK_BEHAV.DAT -> (gravity (2,), dict name -> dict(rho, E, nu))."""
-    g = np.zeros(2)
+    """BULK_BEHAV.DAT -> (gravity (2,), dict name -> dict(rho[, E, nu])), read by
+    fracas_tools.datbox."""
+    g, materials = datbox_reader.read_bulk_behav(Path(datbox, "BULK_BEHAV.DAT"))
     mats = {}
-    lines = Path(datbox, "BULK_BEHAV.DAT").read_text(encoding="latin-1").splitlines()
-    name = None
-    for i, t in enumerate(lines):
-        if t.startswith("$gravy"):
-            g = np.array(_nums(lines[i + 1])[:2])
-        elif len(t) > 6 and t[0] == " " and t[1:6].strip() and t[7:].strip().split()[0:1] \
-                and "Umas=" in t:
-            name = t[1:6]
-            mats[name] = dict(rho=_nums(t[40:])[0])
-        elif name and "EYng=" in t:
-            e, nu = _nums(t[40:])[:2]
-            mats[name].update(E=e, nu=nu)
-    return g, mats
+    for name, m in materials.items():
+        mats[name] = dict(rho=m.density)
+        if m.young is not None:
+            mats[name].update(E=m.young, nu=m.poisson)
+    return np.asarray(g[:2], dtype=float), mats
 
 
 def read_sets(datbox):
-    """POSTPRO.DAT NEW MECAx SETS -> list of sets, each a list of (body, 0-based node)."""
+    """POSTPRO.DAT NEW MECAx SETS -> list of sets, each a list of (body, 0-based node),
+    read by fracas_tools.postpro_deck."""
     p = Path(datbox, "POSTPRO.DAT")
     if not p.exists():
         return []
-    w = p.read_text(encoding="latin-1").split("\n")
-    try:
-        i = next(k for k, t in enumerate(w) if t.startswith("NEW MECAx SETS"))
-    except StopIteration:
+    cmd = next((c for c in read_postpro(p).commands if c.name == "NEW MECAx SETS"), None)
+    if cmd is None:
         return []
-    toks = []
-    for t in w[i + 2:]:
-        if t[:1].isalpha():
-            break
-        toks.append(t.split())
-    k = 0
-    nsets = int(toks[k][0]); k += 1
-    sets = []
-    for _ in range(nsets):
-        nent = int(toks[k][0]); k += 1
-        s = []
-        for _ in range(nent):
-            body, nn = int(toks[k][0]), int(toks[k][1]); k += 1
-            for _ in range(nn):
-                s.append((body, int(toks[k][0]) - 1)); k += 1
-        sets.append(s)
-    return sets
+    return [[(body, int(n) - 1) for body, nodes in groups for n in nodes] for groups in cmd.mecax_sets()]
 
 
 # ------------------------------------------------------------------------------------
@@ -356,8 +294,9 @@ class NodeSets:
         st, su = [], []
         for e, (kind, conn, _) in enumerate(mesh.elements):
             rows = gpv[(b, e + 1)]
-            per_gp = len(rows) // (3 if kind == "T3" else 4)
-            pts = rows[0::per_gp][: (1 if kind == "T3" else 4)]
+            el = ELEMENTS[kind + "xxx"]          # the element table: points printed, state points
+            per_gp = len(rows) // el.gauss_gpv
+            pts = rows[0::per_gp][:el.gauss]
             st.append([(p[0], p[1], p[2]) for p in pts])
             su.append([ulp7(p[:3]) for p in pts])
         return st, su

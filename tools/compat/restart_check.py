@@ -16,7 +16,6 @@ import shutil
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from fracas_tools.datbox import read_dof  # noqa: E402
 from compare_lmgc90 import read_vloc  # noqa: E402
 

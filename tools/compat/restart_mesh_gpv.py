@@ -19,6 +19,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
+
+from fracas_tools.outbox import read_dof_file, read_gpv
+
 
 def run(fracas, case, cmd, steps, out, check=True):
     """Runs fracas; returns what it wrote on stderr (warnings) and its exit status."""
@@ -29,8 +33,15 @@ def run(fracas, case, cmd, steps, out, check=True):
     return done.stderr, done.returncode
 
 
-def values(path, pattern):
-    return [float(m.replace("D", "E")) for m in re.findall(pattern, Path(path).read_text())]
+def node_x(path):
+    """Every X value of DOF.OUT, in file order (fracas_tools.outbox)."""
+    return [float(v) for r in read_dof_file(path).records for v in np.ravel(r.x)]
+
+
+def p_values(path):
+    """The cumulative plastic strain p of every Gauss point of GPV.OUT: the 5th value of
+    its internals line (the line of 6 values, third of each Gauss point)."""
+    return [float(row[4]) for b in read_gpv(path).bodies for e in b.elements for row in e.rows if len(row) == 6]
 
 
 def main():
@@ -55,17 +66,10 @@ def main():
         print(f"{'ok  ' if warned else 'FAIL'} without GPV.INI fracas warns that the plastic state is lost")
         print(f"{'ok  ' if stopped else 'FAIL'} the restarted run stopped by the state guard (exit {status})")
         return 0 if warned and stopped else 1
-    num = r"(-?\d\.\d+D[+-]\d+)"
-    x_whole = values(work / "whole" / "OUTBOX" / "DOF.OUT.1", r"X\(\d\)=\s*" + num)
-    x_rest = values(work / "second" / "OUTBOX" / "DOF.OUT.1", r"X\(\d\)=\s*" + num)
+    x_whole = node_x(work / "whole" / "OUTBOX" / "DOF.OUT.1")
+    x_rest = node_x(work / "second" / "OUTBOX" / "DOF.OUT.1")
     scale = max(abs(v) for v in x_whole)
     dx = max(abs(a - b) for a, b in zip(x_whole, x_rest)) / scale
-    # p is the 5th value of the internals line (third line of each Gauss point)
-    def p_values(path):
-        lines = Path(path).read_text().splitlines()
-        return [float(line.split()[4].replace("D", "E")) if len(line.split()) == 6 else
-                float(line[56:70].replace("D", "E"))
-                for line in lines if len(line) >= 84 and line.count("D") == 6]
     p_whole = p_values(work / "whole" / "OUTBOX" / "GPV.OUT.1")
     p_rest = p_values(work / "second" / "OUTBOX" / "GPV.OUT.1")
     dp = max(abs(a - b) for a, b in zip(p_whole, p_rest)) / max(p_whole)

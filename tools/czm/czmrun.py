@@ -1,7 +1,7 @@
 """A fracas.h5 of a cohesive run as numpy arrays (test_cases/validation/czm_*), on the one
 reader of fracas.h5 (fracas_tools.results.Results):
 
-    run = CzmRun("path/to/run_dir")      # or the .h5 file
+    run = Results("path/to/run_dir")      # or the .h5 file
     run.series["damage_dissipated"]      # one value per step
     run.step, run.time                   # (ns,) per snapshot
     run.X, run.V                         # (ns, nb, 3)
@@ -17,13 +17,12 @@ keep the same number of contact points in all snapshots (the glued faces here).
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from fracas_tools.results import Pair, Results  # noqa: E402
 
 __all__ = ["CzmRun", "Pair"]
 
 
-class CzmRun(Results):
+class Results(Results):
     def __init__(self, run_dir, bodies=True, full=False):
         """bodies: read X and V of every snapshot. full is accepted for older scripts:
         the contacts' velocities, gaps and normals are always read (on demand)."""

@@ -2,7 +2,7 @@
 """Pictures and measured errors of the cohesive laws for doc/czm.md.
 
 Runs the validation decks test_cases/validation/czm_*/ with fracas (into a scratch folder,
-or reads the runs already there) and draws, over the closed forms of tools/czm/czmlaws.py:
+or reads the runs already there) and draws, over the closed forms of fracas_tools.cohesive:
 
     doc/img/czm_<law>.png      mode I traction-opening curve and beta (mac mp3 mal th expo)
     doc/img/czm_mode_II.png    shear under preload: cohesion then Coulomb (MAC, EXPO)
@@ -25,20 +25,16 @@ import numpy as np
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
-sys.path.insert(0, str(HERE))
-from czmlaws import mac_rate_curve  # noqa: E402
-from czmrun import CzmRun  # noqa: E402
+from fracas_tools.cohesive import mac_rate_curve  # noqa: E402
+from fracas_tools.results import Results  # noqa: E402
 
 V = ROOT / "test_cases" / "validation"
 
 
 def load_gen(folder):
-    """Import the gen.py of a validation case as a fresh module."""
-    import importlib.util
-    spec = importlib.util.spec_from_file_location(f"gen_{folder.name}", folder / "gen.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    """The gen.py module of a validation case folder."""
+    from fracas_tools.scripts import load
+    return load(folder / "gen.py")
 
 
 def run_case(fracas, deck, out, rerun, extra=()):
@@ -52,7 +48,7 @@ def mode_one(args, plt, table):
     gen = load_gen(V / "czm_mode_I")
     for name, (law_name, law) in gen.LAWS.items():
         out = run_case(args.fracas, V / "czm_mode_I" / name, args.runs / f"mode_I_{name}", args.rerun)
-        run = CzmRun(out, bodies=False)
+        run = Results(out, bodies=False)
         p = run.pair(2, 1)
         sig = -p.total("rn") / gen.GLUED
         un = p.mean("un")
@@ -85,7 +81,7 @@ def mode_two(args, plt):
     fig, axes = plt.subplots(1, len(gen.LAWS), figsize=(5 * len(gen.LAWS), 4))
     for ax, (name, (law_name, law)) in zip(axes, gen.LAWS.items()):
         out = run_case(args.fracas, V / "czm_mode_II" / name, args.runs / f"mode_II_{name}", args.rerun)
-        run = CzmRun(out, bodies=False)
+        run = Results(out, bodies=False)
         p = run.pair(2, 1)
         L = p.total("L")
         tau = -p.total("rt") / L
@@ -114,7 +110,7 @@ def cyclic(args, plt):
     fig, axes = plt.subplots(1, len(gen.LAWS), figsize=(5 * len(gen.LAWS), 4))
     for ax, (name, (law_name, law)) in zip(axes, gen.LAWS.items()):
         out = run_case(args.fracas, V / "czm_cyclic" / name, args.runs / f"cyclic_{name}", args.rerun)
-        run = CzmRun(out, bodies=False)
+        run = Results(out, bodies=False)
         p = run.pair(2, 1)
         sig = -p.total("rn") / gen.GLUED
         un = p.mean("un")
@@ -134,12 +130,12 @@ def cyclic(args, plt):
 def rate(args, plt):
     gen = load_gen(V / "czm_rate")
     out = run_case(args.fracas, V / "czm_rate", args.runs / "rate", args.rerun)
-    run = CzmRun(out)
+    run = Results(out)
     law, u0 = gen.LAW, gen.U0
     s0 = np.sqrt(law.cn * law.w)
     fig, ax = plt.subplots(figsize=(6, 4.2))
     x = np.linspace(0.0, 4.0 * u0, 2000)
-    from czmlaws import Law
+    from fracas_tools.cohesive import Law
     ax.plot(x / u0, Law.mac(law.cn, law.ct, 0.0, law.w).sigma(x, 1) / s0, "k-", lw=1.0, label="b = 0 (rate-free)")
     for i, (r, col) in enumerate(zip(gen.RATES, ("tab:blue", "tab:orange", "tab:red"))):
         p = run.pair(2 * i + 2, 2 * i + 1)
@@ -161,10 +157,9 @@ def wall(args, plt):
     deck = ROOT / "test_cases" / "examples" / "glued_wall"
     out = run_case(args.fracas, deck, args.runs / "glued_wall", args.rerun,
                    extra=("--set", "output_vtk_every=0"))
-    sys.path.insert(0, str(ROOT / "tools"))
     from fracas_tools.datbox import read_case
     case = read_case(deck)
-    run = CzmRun(out)
+    run = Results(out)
     fig, axes = plt.subplots(1, 2, figsize=(11, 3.6), constrained_layout=True)
     for ax, isnap, title in ((axes[0], 0, "start: all joints glued"), (axes[1], -1, "end (t = 1 s)")):
         pos = run.pos[isnap]

@@ -9,6 +9,11 @@
     fracas_tools.generators  seeded generators: disk deposits, polygons, walls, masonry, arches
     fracas_tools.post        read OUTBOX/fracas.h5, micro-mechanics, plots, report
     fracas_tools.synthetic   a synthetic fracas.h5 with the documented layout (tests, demos)
+    fracas_tools.results     the one fracas.h5 reader (Run, Results)
+    fracas_tools.cohesive    the cohesive laws (Law, the solver's mirrored) and exploded decks' helpers
+    fracas_tools.checks      Checker (one line per checked quantity); valtools, polytools,
+                             fractools, valmesh, czm_closed_forms: the check scripts' helpers
+    fracas_tools.scripts     load(path): a script's helper outside the package
 
 Run ``python3 -m fracas_tools --help`` for the command line.
 """

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .mailx import VTK_CORNERS
 from .results import Run, _attr
 
 __all__ = ["MeshRun", "MeshState", "von_mises", "plot_fragment_sizes"]
@@ -150,14 +151,13 @@ class MeshRun:
     def element_centroids(self, X=None):
         """Mean of each element's corner nodes (reference, or displaced by X)."""
         xy = self.ref if X is None else self.ref + X
-        return np.array([xy[n[:4] if len(n) in (4, 8) else n[:3]].mean(axis=0) for n in self.elements])
+        return np.array([xy[n[:VTK_CORNERS[t]]].mean(axis=0) for n, t in zip(self.elements, self.element_vtk_type)])
 
     def element_displacement(self, X, elements):
         """Mean nodal displacement of the corner nodes of each element listed."""
         out = []
         for e in np.atleast_1d(elements):
-            n = self.elements[e]
-            n = n[:4] if len(n) in (4, 8) else n[:3]
+            n = self.elements[e][:VTK_CORNERS[self.element_vtk_type[e]]]
             out.append(X[n].mean(axis=0))
         return np.array(out)
 

@@ -15,19 +15,51 @@ contactor, in order within the body. :meth:`MeshBody.tactors` gives that numberi
 """
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from .fortran_io import e14
 
-__all__ = ["ELEMENT_NODES", "Element", "Candidates", "Polyline", "MeshBody", "Model",
-           "MODEL_OPTION_ORDER"]
+__all__ = ["ELEMENTS", "ElementKind", "ELEMENT_NODES", "ELEMENT_CORNERS", "VTK_CORNERS", "element_edges",
+           "Element", "Candidates", "Polyline", "MeshBody", "Model", "MODEL_OPTION_ORDER"]
 
-#: Nodes per element kind (the geometry written in BODIES.DAT).
-ELEMENT_NODES = {"T3xxx": 3, "Q4xxx": 4, "T6xxx": 6, "Q8xxx": 8}
+class ElementKind(NamedTuple):
+    """One row of the element table: nodes (the geometry written in BODIES.DAT), corners
+    (vertices: the first nodes, counter-clockwise; the others are mid-side nodes, that
+    of edge k after the corners), gauss (points of the stiffness rule: the element's
+    Gauss-point states), gauss_gpv (points LMGC90 prints per element in GPV.OUT: T3's
+    one point three times), gmsh (gmsh's element type) and vtk (the VTK cell type of
+    the DISPLAY files and /mesh/element_vtk_type)."""
+    nodes: int
+    corners: int
+    gauss: int
+    gauss_gpv: int
+    gmsh: int
+    vtk: int
 
-#: Vertices (corner nodes) per element kind; the other nodes are mid-side nodes.
-ELEMENT_CORNERS = {"T3xxx": 3, "Q4xxx": 4, "T6xxx": 3, "Q8xxx": 4}
+
+#: The one element table of the Python tools: the solver's (modules/fe/fracas_elements.f90,
+#: doc/mesh_mechanics.md); Q4P0x is a MODELS.DAT element on the Q4xxx geometry.
+ELEMENTS = {"T3xxx": ElementKind(3, 3, 1, 3, 2, 5), "Q4xxx": ElementKind(4, 4, 4, 4, 3, 9),
+            "T6xxx": ElementKind(6, 3, 3, 3, 9, 22), "Q8xxx": ElementKind(8, 4, 9, 9, 16, 23)}
+
+#: Nodes per element kind (ELEMENTS).
+ELEMENT_NODES = {k: e.nodes for k, e in ELEMENTS.items()}
+
+#: Vertices (corner nodes) per element kind (ELEMENTS).
+ELEMENT_CORNERS = {k: e.corners for k, e in ELEMENTS.items()}
+
+#: Vertices (corner nodes) per VTK cell type of an element (ELEMENTS).
+VTK_CORNERS = {e.vtk: e.corners for e in ELEMENTS.values()}
+
+
+def element_edges(kind, nodes):
+    """The edges of an element, counter-clockwise: [(corner a, corner b, mid-side node
+    or None)], edge k from corner k to corner k + 1."""
+    nc = ELEMENTS[kind].corners
+    mids = list(nodes[nc:])
+    return [(nodes[k], nodes[(k + 1) % nc], mids[k] if mids else None) for k in range(nc)]
 
 
 def _check_name(name, what):

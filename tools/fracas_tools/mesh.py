@@ -35,14 +35,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .mailx import ELEMENT_CORNERS, ELEMENT_NODES, Element, MeshBody
+from .mailx import ELEMENT_CORNERS, ELEMENT_NODES, ELEMENTS, Element, MeshBody, element_edges
 
 __all__ = ["Mesh2D", "mesh_from_arrays", "mesh_from_gmsh", "read_msh", "mesh_geo",
            "build_bodies", "explode", "Exploded", "family_colors", "phase_codes",
            "impose_on_group", "mecax_sets"]
 
 #: gmsh element type -> LMGC90 element
-GMSH_2D = {2: "T3xxx", 3: "Q4xxx", 9: "T6xxx", 16: "Q8xxx"}
+GMSH_2D = {e.gmsh: k for k, e in ELEMENTS.items()}
 GMSH_1D = {1: 2, 8: 3}          # line types -> nodes per line
 
 
@@ -96,7 +96,7 @@ class Mesh2D:
         """{(min corner, max corner): [(element, local edge), ...]} over all elements."""
         out = {}
         for e, (kind, nodes) in enumerate(self.elements):
-            for k, (a, b, _) in enumerate(_element_edges(kind, nodes)):
+            for k, (a, b, _) in enumerate(element_edges(kind, nodes)):
                 out.setdefault((min(a, b), max(a, b)), []).append((e, k))
         return out
 
@@ -125,13 +125,6 @@ def _counter_clockwise(kind, nodes, xy):
     corners = [nodes[0]] + list(nodes[1:nc][::-1])
     mids = list(nodes[nc:][::-1])      # mid of edge k (k, k+1) becomes mid of the reversed edge
     return tuple(corners + mids)
-
-
-def _element_edges(kind, nodes):
-    """[(corner a, corner b, mid or None)] counter-clockwise."""
-    nc = ELEMENT_CORNERS[kind]
-    mids = nodes[nc:]
-    return [(nodes[k], nodes[(k + 1) % nc], mids[k] if mids else None) for k in range(nc)]
 
 
 def mesh_from_arrays(nodes, elements, phases=None, node_groups=None, edge_groups=None):
@@ -339,7 +332,7 @@ def _attach_groups(mesh, body, local, elist, curve_nodes_by_edges=False):
     count = {}
     for e in elist:
         kind, nodes = mesh.elements[e]
-        for a, b, m in _element_edges(kind, nodes):
+        for a, b, m in element_edges(kind, nodes):
             key = (min(a, b), max(a, b))
             count[key] = count.get(key, 0) + 1
             owned[key] = [(local[p], local[q]) for p, q in _sub_edges(b, a, m)]
@@ -521,7 +514,7 @@ def explode(case, mesh, material, model=None, apab=(0.25, 0.75), cracks=(), colo
     res = Exploded(bodies, {})
     for e, (kind, nodes) in enumerate(mesh.elements):
         body, local = bodies[e], locals_[e]
-        for a, b, m in _element_edges(kind, nodes):
+        for a, b, m in element_edges(kind, nodes):
             key = (min(a, b), max(a, b))
             sharing = edges[key]
             pieces = [(local[p], local[q]) for p, q in _sub_edges(b, a, m)]

@@ -115,8 +115,10 @@ def read_postpro(path):
         lines = [l.rstrip("\n").rstrip("\r") for l in f]
     cur = None
     for i, t in enumerate(lines, start=1):
-        s = t.strip()
-        if not s or t.startswith(("!", "#")):
+        if t.startswith(("!", "#")):
+            continue
+        s = t.split(":", 1)[0].strip()       # LMGC90's decks: a comment after ':' (column 31)
+        if not s:
             continue
         parts = s.split()
         if all(p.lstrip("-").isdigit() for p in parts):

@@ -13,6 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .mailx import VTK_CORNERS
+
 _DTYPES = {"Float64": "<f8", "Float32": "<f4", "Int32": "<i4", "Int64": "<i8", "UInt8": "u1",
            "UInt64": "<u8"}
 
@@ -142,7 +144,7 @@ def render(display_dir, frame=-1, out=None, ax=None, force_scale=None, title=Non
             extent.append(g["points"][:, :2])
     if "meshes" in files:          # meshed bodies: element outlines (corners of quadratic cells)
         g = read_vtu(files["meshes"])
-        corners = {5: 3, 9: 4, 22: 3, 23: 4, 7: None}
+        corners = {**VTK_CORNERS, 7: None}      # 7: a polygon cell, all its points
         polys = [g["points"][idx[:corners.get(int(ty)) or len(idx)], :2] for idx, ty in zip(cells(g), g["types"])]
         ax.add_collection(PolyCollection(polys, facecolor="0.85", edgecolor="0.35", linewidth=0.3))
         extent.append(g["points"][:, :2])

@@ -15,8 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fractools import MeshRun  # noqa: E402
+from fracas_tools.fractools import MeshRun  # noqa: E402
 
 
 def draw(mr, ax, which=-1, field="von_mises", deform=0.0, cmap="viridis", vmax=None, crack_color="k",

@@ -25,10 +25,9 @@ import numpy as np
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(ROOT / "test_cases" / "validation_fracture" / "kalthoff"))
-import gen  # noqa: E402
-from fractools import MeshRun, crack_angle, tip_speed, wave_speeds  # noqa: E402
+from fracas_tools.scripts import load  # noqa: E402
+gen = load(ROOT / "test_cases" / "validation_fracture" / "kalthoff" / "gen.py")   # the Kalthoff deck
+from fracas_tools.fractools import MeshRun, crack_angle, tip_speed, wave_speeds  # noqa: E402
 
 
 def measure(run_dir, p):

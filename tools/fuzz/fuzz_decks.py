@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Deck fuzzer: mutate the shipped decks, then ask Fracas to check and run them.
 
-    /usr/bin/python3 tools/fuzz/fuzz_decks.py --fracas BIN [--decks N] [--seed S]
+    build/release/bin/fracas-python tools/fuzz/fuzz_decks.py --fracas BIN [--decks N] [--seed S]
         [--steps 30] [--jobs 2] [--sources all|small] [--work DIR] [--keep-findings DIR]
         [--only I] [--json FILE]
 
@@ -50,7 +50,6 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
 from fracas_tools.results import Run  # noqa: E402  (the one reader of fracas.h5)
 
 LMGC_CASES = ["disks_box", "drum", "driven_evolution", "polygons_ground", "mixed_disk_polygon", "glued_pair_czm",

@@ -3,15 +3,15 @@
 (hydride_plate.py), run (fracas) and summarised (hydride_post.py) in its own folder.
 
     # everything on this machine, two runs at a time
-    python3 tools/hydride/campaign.py all --root runs/hydride --jobs 2
+    build/release/bin/fracas-python tools/hydride/campaign.py all --root runs/hydride --jobs 2
     # one case of the grid (a SLURM array task: tools/hydride/slurm_array.sh)
-    python3 tools/hydride/campaign.py one --root runs/hydride --index $SLURM_ARRAY_TASK_ID
+    build/release/bin/fracas-python tools/hydride/campaign.py one --root runs/hydride --index $SLURM_ARRAY_TASK_ID
     # the list of cases (index seed bonding h)
-    python3 tools/hydride/campaign.py list
+    build/release/bin/fracas-python tools/hydride/campaign.py list
     # a dry run of one case: its deck generated and checked (fracas --check), nothing run
-    python3 tools/hydride/campaign.py one --root /tmp/dry --index 0 --dry-run
+    build/release/bin/fracas-python tools/hydride/campaign.py one --root /tmp/dry --index 0 --dry-run
     # summaries again (summary.json, crack.png) of the cases already run, nothing rerun
-    python3 tools/hydride/campaign.py summarize --root runs/hydride
+    build/release/bin/fracas-python tools/hydride/campaign.py summarize --root runs/hydride
 
 Case folders are ROOT/<bonding>_h<h in nm>_s<seed>/ with DATBOX/, OUTBOX/, POSTPRO/,
 DISPLAY/, hydrides.json, summary.json (hydride_post.summary plus the wall and processor
@@ -35,8 +35,8 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 ROOT_DIR = HERE.parents[1]
-sys.path.insert(0, str(HERE))
-import hydride_plate as plate  # noqa: E402
+from fracas_tools.scripts import load  # noqa: E402
+plate = load(HERE / "hydride_plate.py")
 
 DEFAULTS = dict(seeds=[1, 2, 3, 4, 5], bondings=["weak", "strong"], sizes=[1.0e-6, 0.7e-6],
                 final_time=160e-9, courant=1.0, output_time=10e-9, vtk_time=20e-9)

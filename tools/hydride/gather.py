@@ -2,7 +2,7 @@
 """Gather a hydrided-plate campaign (campaign.py, or the SLURM array of slurm_array.sh)
 into one table and a few figures.
 
-    python3 tools/hydride/gather.py ROOT [--out DIR] [--pictures SEED]
+    build/release/bin/fracas-python tools/hydride/gather.py ROOT [--out DIR] [--pictures SEED]
 
 Reads ROOT/*/summary.json (and the runs' files for the curves and pictures), writes in
 DIR (default ROOT):
@@ -29,8 +29,8 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-import hydride_post as post  # noqa: E402
+from fracas_tools.scripts import load  # noqa: E402
+post = load(HERE / "hydride_post.py")
 
 FAMILIES = list(post.FAMILY_LABEL)
 BOND_COLOR = {"weak": "#f08c00", "strong": "#1f3fbf"}

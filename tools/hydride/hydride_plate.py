@@ -12,7 +12,7 @@ starts the crack at the middle of the edge it cuts.
 
 Materials, laws and their sources: doc/hydrided_zircaloy.md. Everything here is in SI.
 
-    python3 tools/hydride/hydride_plate.py CASE_DIR --seed 3 --bonding weak --h 0.5e-6
+    build/release/bin/fracas-python tools/hydride/hydride_plate.py CASE_DIR --seed 3 --bonding weak --h 0.5e-6
 
 The same seed gives the same hydrides at any element size (the placement does not
 depend on h), and the same deck byte for byte (gmsh runs on one thread).
@@ -27,8 +27,8 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent))
 from fracas_tools import Case  # noqa: E402
+from fracas_tools.cohesive import Law  # noqa: E402
 from fracas_tools.mesh import mecax_sets, mesh_from_gmsh  # noqa: E402
 from fracas_tools.postpro_deck import PostPro, mecax_set_rows  # noqa: E402
 
@@ -310,9 +310,9 @@ def blal_stiffness(young, poisson, h, factor):
 
 
 def critical_opening(params):
-    """Opening at which a MAL_CZM point is broken in mode I: s/c + 1.5 (G/s - s/(2c))."""
-    di = params["s1"] / params["cn"]
-    return di + 1.5 * (params["G1"] / params["s1"] - 0.5 * di)
+    """Opening at which a MAL_CZM point is broken in mode I: s/c + 1.5 (G/s - s/(2c))
+    (the law's full-separation opening, fracas_tools.cohesive.Law)."""
+    return Law.mal(*(params[k] for k in ("cn", "ct", "s1", "s2", "G1", "G2"))).d_end(1)
 
 
 def choose_alert(laws, mesh):

@@ -2,7 +2,7 @@
 """Results of a hydrided-plate run (tools/hydride/hydride_plate.py): the macro-crack and
 where it runs, microcracks, force-displacement curve, energy split; a picture.
 
-    python3 tools/hydride/hydride_post.py CASE_DIR [--deck DECK_DIR] [--json OUT.json] [--png OUT.png]
+    build/release/bin/fracas-python tools/hydride/hydride_post.py CASE_DIR [--deck DECK_DIR] [--json OUT.json] [--png OUT.png]
 
 Reads CASE_DIR/hydrides.json (the microstructure), CASE_DIR/OUTBOX/fracas.h5 (the
 interface edges and their state, the energy series) and CASE_DIR/POSTPRO/Dep_, Fint_
@@ -30,7 +30,6 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from fracas_tools.results import Run  # noqa: E402
 
 FAMILY_LABEL = {"HY_HY": "through hydrides", "HY_MA": "along matrix/hydride interfaces",

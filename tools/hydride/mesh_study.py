@@ -8,7 +8,7 @@ crack_step_limit 0.25, dt = 2e-10 s x h / 1 um). Prints the macro-crack shares p
 their mean and spread per bonding and size, and the seed-by-seed differences of the
 claim, and says which hold on every seed and both sizes.
 
-    mesh_study.py WORK [--seeds 1 2 3] [--sizes 1e-6 0.7e-6] [--fracas BIN] [--json OUT]
+    build/release/bin/fracas-python tools/hydride/mesh_study.py WORK [--seeds 1 2 3] [--sizes 1e-6 0.7e-6] [--fracas BIN] [--json OUT]
 
 Runs whose summary exists in WORK are reused. About 15 min of CPU for 3 seeds.
 """
@@ -23,11 +23,11 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(ROOT / "test_cases" / "validation" / "hydrided_plate"))
-import gen as small  # noqa: E402  (the ctest plate's geometry)
-import hydride_plate as hp  # noqa: E402
-import hydride_post as post  # noqa: E402
+from fracas_tools.scripts import load  # noqa: E402
+
+small = load(ROOT / "test_cases" / "validation" / "hydrided_plate" / "gen.py")   # the ctest plate's geometry
+hp = load(HERE / "hydride_plate.py")
+post = load(HERE / "hydride_post.py")
 
 FINAL_TIME = 60e-9
 FAMILIES = ("HY_HY", "HY_MA", "MA_MA")

@@ -3,7 +3,7 @@
 NLGS updates changes (same deck, same solver settings, same tolerance: a round-off-level
 perturbation that the granular chaos amplifies). No tolerance can be tighter than this.
 
-    /usr/bin/python3 tools/regression/chaos_floor.py --fracas BIN --work DIR CASE_DIR
+    build/release/bin/fracas-python tools/regression/chaos_floor.py --fracas BIN --work DIR CASE_DIR
         [--variants reversed shuffled:1 shuffled:2 shuffled:3 shuffled:4 colored] [--jobs 2]
 
 Runs CASE_DIR with its own settings (the reference run) and once per variant
@@ -19,7 +19,6 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import tagged  # noqa: E402
 
 

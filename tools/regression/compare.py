@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Compare a Fracas run's tagged values with a reference (made by tagged.py).
 
-    /usr/bin/python3 tools/regression/compare.py REFERENCE RUN [--case CASE_DIR] [--write run.tag]
-    /usr/bin/python3 tools/regression/compare.py --exact A B
+    build/release/bin/fracas-python tools/regression/compare.py REFERENCE RUN [--case CASE_DIR] [--write run.tag]
+    build/release/bin/fracas-python tools/regression/compare.py --exact A B
 
 REFERENCE is a reference.tag (``name : value : abs=A rel=R``). RUN is either a tag
 file (``name : value``) or a run directory holding OUTBOX/fracas.h5, whose tags are
@@ -23,7 +23,6 @@ import math
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import tagged  # noqa: E402
 
 

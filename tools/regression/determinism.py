@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Determinism check: run one deck twice and require bit-identical results.
 
-    /usr/bin/python3 tools/regression/determinism.py --fracas BIN --work DIR CASE_DIR \\
+    build/release/bin/fracas-python tools/regression/determinism.py --fracas BIN --work DIR CASE_DIR \\
         [--set key=value ...]
 
 Runs ``BIN -q --overwrite --output DIR/run_a CASE_DIR`` and the same into DIR/run_b
@@ -18,7 +18,6 @@ import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import compare  # noqa: E402
 import tagged  # noqa: E402
 

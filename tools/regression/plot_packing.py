@@ -3,7 +3,7 @@
 rounded bars, and the force chains (segments between the centres of the two
 bodies of each loaded contact, width proportional to the normal force).
 
-    /usr/bin/python3 tools/regression/plot_packing.py RUN_DIR --case CASE_DIR -o out.png
+    build/release/bin/fracas-python tools/regression/plot_packing.py RUN_DIR --case CASE_DIR -o out.png
         [--snapshot -1] [--no-forces] [--title TEXT] [--series series.png]
 
 With ``--series`` a second figure shows the time series of the run: kinetic energy,
@@ -17,38 +17,25 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import tagged  # noqa: E402
+from fracas_tools import datbox  # noqa: E402  (the one DATBOX reader)
 
 
 def read_contactors(bodies_dat):
-    """Per body: list of (type, values) of its contactors; values are the reals
-    of columns 35-48 and 56-69 of the contactor line (radius; JONCx ax1, ax2)."""
+    """Per body: list of (type, values) of its rigid contactors (DISKx: radius; JONCx:
+    ax1, ax2; others: none), read by fracas_tools.datbox."""
     out = []
-    cur = None
-    in_tacty = False
-    with open(bodies_dat, "r", errors="replace") as f:
-        for line in f:
-            line = line.rstrip("\r\n").replace("\t", " ")
-            if not line.strip() or line[0] in "!#":
-                continue
-            if line.startswith("$bdyty"):
-                cur = []
-                out.append(cur)
-                in_tacty = False
-            elif line.startswith("$tacty"):
-                in_tacty = True
-            elif line.startswith("$"):
-                in_tacty = False
-            elif in_tacty and cur is not None and line[1:6].strip() and line[1:6][0].isalpha():
-                vals = []
-                for a, b in ((34, 48), (55, 69)):
-                    s = line[a:b].strip().replace("D", "e").replace("d", "e")
-                    try:
-                        vals.append(float(s))
-                    except ValueError:
-                        pass
-                cur.append((line[1:6], vals))
+    for body in datbox.read_bodies(bodies_dat):
+        cs = []
+        for c in getattr(body, "contactors", []):
+            kind = getattr(c, "kind", None)
+            if kind == "DISKx":
+                cs.append((kind, [c.radius]))
+            elif kind == "JONCx":
+                cs.append((kind, [c.ax1, c.ax2]))
+            elif kind is not None:
+                cs.append((kind, []))
+        out.append(cs)
     return out
 
 
@@ -82,6 +69,7 @@ def main(argv=None):
         an = c["an_body"] - 1
         rn = c["reaction"][:, 1]
         pt = c["point"]
+    nc = len(rn)
     if len(tact) != len(ref):
         raise SystemExit("plot_packing.py: BODIES.DAT and fracas.h5 disagree on the number of bodies")
     pos = ref + X

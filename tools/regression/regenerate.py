@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Regenerate a regression case's reference.tag (the only way to make one).
 
-    /usr/bin/python3 tools/regression/regenerate.py --fracas build/release/bin/fracas \\
+    build/release/bin/fracas-python tools/regression/regenerate.py --fracas build/release/bin/fracas \\
         test_cases/regression/deposit_1000 [--work DIR] [--run-dir DIR]
 
 Runs the case (``fracas -q --overwrite --output WORK CASE``; WORK defaults to a
@@ -20,7 +20,6 @@ import tempfile
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import tagged  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -54,7 +53,7 @@ def main(argv=None):
         print(f"regenerate.py: ran {case.name} in {time.perf_counter() - t0:.2f} s")
     tags = tagged.compute_tags(run_dir, case)
     rel = case.relative_to(ROOT) if case.is_relative_to(ROOT) else case
-    command = f"/usr/bin/python3 tools/regression/regenerate.py --fracas build/release/bin/fracas {rel}"
+    command = f"build/release/bin/fracas-python tools/regression/regenerate.py --fracas build/release/bin/fracas {rel}"
     tagged.make_reference(tags, tagged.read_tolerances(tol_file), case / "reference.tag", command)
     print(f"regenerate.py: wrote {case / 'reference.tag'} ({len(tags)} tags)")
     if tmp:

@@ -22,7 +22,6 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from fracas_tools.results import Run  # noqa: E402  (the one reader of fracas.h5)
 
 

@@ -5,7 +5,7 @@ From a run's OUTBOX/fracas.h5 (and the case's DATBOX/BODIES.DAT, to tell disks
 from walls) compute named, physically meaningful statistics and write them one
 per line as ``name : value``::
 
-    /usr/bin/python3 tools/regression/tagged.py RUN_DIR [--case CASE_DIR] [-o run.tag]
+    build/release/bin/fracas-python tools/regression/tagged.py RUN_DIR [--case CASE_DIR] [-o run.tag]
 
 RUN_DIR is the directory that holds OUTBOX/ (the case directory, or the
 ``--output`` directory of the run). CASE_DIR (default: the ``case_dir`` attribute
@@ -14,7 +14,7 @@ of fracas.h5, then RUN_DIR) holds DATBOX/.
 A reference is made (never by hand) with tools/regression/regenerate.py (runs the
 case, then calls this), or directly from a finished run::
 
-    /usr/bin/python3 tools/regression/tagged.py RUN_DIR --case CASE_DIR \\
+    build/release/bin/fracas-python tools/regression/tagged.py RUN_DIR --case CASE_DIR \\
         --make-reference CASE_DIR/reference.tag --tolerances CASE_DIR/tolerances.txt
 
 which writes the run's values together with the tolerance of every tag, read
@@ -81,7 +81,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from fracas_tools import datbox  # noqa: E402  (the one DATBOX reader)
 from fracas_tools.results import Run  # noqa: E402  (the one reader of fracas.h5)
 
 FORMAT_VERSION = 1
@@ -93,29 +93,15 @@ FORMAT_VERSION = 1
 
 def body_contactor_kinds(bodies_dat):
     """Per body (in BODIES.DAT order), the list of its contactor types (DISKx,
-    JONCx, ...): columns 2-6 of the lines after $tacty, up to $$$$$$."""
+    JONCx, ...; a meshed body's CLxxx points and ALpxx segments one each), read by
+    fracas_tools.datbox."""
     kinds = []
-    cur = None
-    in_tacty = False
-    with open(bodies_dat, "r", errors="replace") as f:
-        for line in f:
-            line = line.rstrip("\r\n").replace("\t", " ")
-            if not line.strip() or line[0] in "!#":
-                continue
-            if line.startswith("$bdyty"):
-                cur = []
-                kinds.append(cur)
-                in_tacty = False
-            elif line.startswith("$tacty"):
-                in_tacty = True
-            elif line.startswith("$$$$$$"):
-                in_tacty = False
-            elif line.startswith("$"):
-                in_tacty = False
-            elif in_tacty and cur is not None:
-                word = line[1:6]
-                if re.fullmatch(r"[A-Za-z][A-Za-z0-9]{4}", word):
-                    cur.append(word)
+    for body in datbox.read_bodies(bodies_dat):
+        if body.model == "MAILx":
+            kinds.append([k for c in body.contactors for k in
+                          (["CLxxx"] * len(c.points) if hasattr(c, "points") else ["ALpxx"] * (len(c.nodes) - 1))])
+        else:
+            kinds.append([c.kind for c in body.contactors])
     return kinds
 
 
@@ -333,54 +319,32 @@ def solid_fraction_core(pos, radius, is_disk, is_wall, kinds, ref, x0):
 
 
 def law_frictions(tact_behav, law_names):
-    """Friction coefficient per law id (TACT_BEHAV.DAT order = /help/law): the
-    first 'fric=' (or dynamic 'dyfr=') value of the law's lines; 0 if none."""
+    """Friction coefficient per law id (TACT_BEHAV.DAT order = /help/law): the law's
+    'fric' (or dynamic 'dyfr') parameter; 0 if none (read by fracas_tools.datbox)."""
+    laws, _ = datbox.read_tact_behav(tact_behav)
     fr = {}
-    cur = None
-    with open(tact_behav, "r", errors="replace") as f:
-        for line in f:
-            line = line.rstrip("\r\n")
-            if line.startswith("$"):
-                cur = None
-                continue
-            if line[:1] == " " and len(line) > 6 and line[1:6].strip() and line[1:6] in law_names:
-                cur = line[1:6]
-            if cur is None or cur in fr:
-                continue
-            for lab, val in ((line[40:45], line[45:59]), (line[61:66], line[66:80])):
-                if lab.strip().lower() in ("fric=", "dyfr="):
-                    fr[cur] = float(val.replace("D", "e").replace("d", "e"))
-                    break
+    for law in laws.values():
+        for key in ("fric", "dyfr"):
+            if law.params.get(key) is not None:
+                fr.setdefault(law.name, float(law.params[key]))
+                break
     return np.array([fr.get(n, 0.0) for n in law_names])
 
 
 def gravity(bulk_behav):
-    """The $gravy vector of BULK_BEHAV.DAT (0 if absent)."""
-    with open(bulk_behav, "r", errors="replace") as f:
-        lines = f.read().splitlines()
-    for i, line in enumerate(lines):
-        if line.startswith("$gravy"):
-            for nxt in lines[i + 1:]:
-                if nxt.strip() and nxt[0] not in "!#":
-                    vals = [nxt[24:38], nxt[45:59], nxt[66:80]]
-                    return np.array([float(v.replace("D", "e").replace("d", "e") or 0.0)
-                                     if v.strip() else 0.0 for v in vals])
-    return np.zeros(3)
+    """The $gravy vector of BULK_BEHAV.DAT (0 if absent), read by fracas_tools.datbox."""
+    return np.asarray(datbox.read_bulk_behav(bulk_behav)[0], dtype=float)
 
 
 def initial_displacements(dof_ini, nb):
-    """(nb, 3) displacements X of DOF.INI (0 for bodies not listed / no file)."""
+    """(nb, 3) displacements X of the RBDY2 bodies in DOF.INI (0 for bodies not listed /
+    no file), read by fracas_tools.datbox."""
     x = np.zeros((nb, 3))
     if not dof_ini.is_file():
         return x
-    body = None
-    with open(dof_ini, "r", errors="replace") as f:
-        for line in f:
-            if line.startswith(" RBDY2"):
-                body = int(line[6:15]) - 1 if line[6:15].strip() else None
-            elif "X(1)=" in line and body is not None and 0 <= body < nb:
-                vals = [line[34:48], line[55:69], line[76:90]]
-                x[body] = [float(v.replace("D", "e").replace("d", "e")) for v in vals]
+    for key, state in datbox.read_dof(dof_ini)[2].items():
+        if isinstance(key, int) and 1 <= key <= nb:
+            x[key - 1] = state[0]
     return x
 
 
@@ -488,7 +452,7 @@ def main(argv=None):
     if a.make_reference:
         if not a.tolerances:
             p.error("--make-reference needs --tolerances")
-        cmd = ("/usr/bin/python3 tools/regression/tagged.py RUN_DIR --case CASE_DIR "
+        cmd = ("build/release/bin/fracas-python tools/regression/tagged.py RUN_DIR --case CASE_DIR "
                "--make-reference CASE_DIR/reference.tag --tolerances CASE_DIR/tolerances.txt")
         make_reference(tags, read_tolerances(a.tolerances), a.make_reference, cmd)
         print(f"tagged.py: wrote {a.make_reference} ({len(tags)} tags)")

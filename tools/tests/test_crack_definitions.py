@@ -13,13 +13,11 @@ separates at d_i + d_k = 1.75e-7 m, so one point is broken and the other softeni
 """
 import os
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from fracas_tools import Case  # noqa: E402
 from fracas_tools.mesh import mesh_from_arrays  # noqa: E402
 

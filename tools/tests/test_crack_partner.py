@@ -17,7 +17,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from fracas_tools import Case  # noqa: E402
 from fracas_tools.mesh import mesh_from_arrays  # noqa: E402
 

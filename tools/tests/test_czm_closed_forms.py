@@ -12,8 +12,7 @@ import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "test_cases" / "validation"))
-import czm_closed_forms as cf  # noqa: E402
+from fracas_tools import czm_closed_forms as cf  # noqa: E402
 
 LAWS = {
     "MAC": dict(cn=1.0e10, ct=1.0e11, b=0.0, w=40.0),

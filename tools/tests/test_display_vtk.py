@@ -3,7 +3,6 @@ own XML reader (python3-vtk9, the reader ParaView uses), checked against fracas.
 and the deck: cell counts and types, fields and their components, positions,
 radii, polygon areas; the description of the run in fracas.h5 (/contactors against
 BODIES.DAT, /run)."""
-import re
 
 import h5py
 import numpy as np
@@ -160,10 +159,12 @@ def test_drum_is_an_open_circle(tmp_path):
 
 
 def test_contactors_in_fracas_h5_match_bodies_dat(mixed):
-    """/contactors against BODIES.DAT read here with a regular expression."""
-    text = (lmgc90_decks() / "mixed_disk_polygon" / "DATBOX" / "BODIES.DAT").read_text()
-    byrd = [float(x) for x in re.findall(r"^ DISKx .*byrd=\s*(\S+)", text, re.M)]
-    nvert = [int(x) for x in re.findall(r"^ POLYG .*nb_vertex=\s*(\d+)", text, re.M)]
+    """/contactors against BODIES.DAT read by fracas_tools.datbox (not the solver's reader)."""
+    from fracas_tools.datbox import read_bodies
+    tactors = [c for b in read_bodies(lmgc90_decks() / "mixed_disk_polygon" / "DATBOX" / "BODIES.DAT")
+               for c in b.contactors]
+    byrd = [c.radius for c in tactors if c.kind == "DISKx"]
+    nvert = [len(c.vertices) for c in tactors if c.kind == "POLYG"]
     with h5py.File(mixed / "OUTBOX" / "fracas.h5") as f:
         kind = f["contactors/kind"][:]
         names = list(f["contactors/kind_names"].asstr()[:])

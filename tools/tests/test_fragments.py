@@ -15,7 +15,6 @@ import pytest
 
 from fracas_run import ROOT, run
 
-sys.path.insert(0, str(ROOT / "tools"))
 
 pytest.importorskip("gmsh")
 vtkio = pytest.importorskip("vtkmodules.vtkIOXML")

@@ -21,9 +21,8 @@ FAKES = {
     "crash": ACCEPT + "kill -SEGV $$\n",
     "hang": ACCEPT + "sleep 30\n",
     "lie": ACCEPT + OUTDIR + (
-        '/usr/bin/python3 - "$out" <<PY\n'
+        f'PYTHONPATH={str(TOOLS)!r} /usr/bin/python3 - "$out" <<PY\n'
         "import sys, h5py\n"
-        f"sys.path.insert(0, {str(TOOLS)!r})\n"
         "from fracas_tools import synthetic\n"
         "p = sys.argv[1] + '/OUTBOX/fracas.h5'\n"
         "import os; os.makedirs(sys.argv[1] + '/OUTBOX', exist_ok=True)\n"
@@ -33,9 +32,8 @@ FAKES = {
     "reject": 'echo "$1:3:5: a planted rejection" >&2; exit 1\n',
     # a sound run with a restart point, then SIGSEGV when it is fed back through --restart
     "restart_crash": 'case "$*" in *--restart*) kill -SEGV $$;; esac\n' + ACCEPT + OUTDIR + (
-        '/usr/bin/python3 - "$out" <<PY\n'
+        f'PYTHONPATH={str(TOOLS)!r} /usr/bin/python3 - "$out" <<PY\n'
         "import sys, h5py, numpy as np\n"
-        f"sys.path.insert(0, {str(TOOLS)!r})\n"
         "from fracas_tools import synthetic\n"
         "p = sys.argv[1] + '/OUTBOX/fracas.h5'\n"
         "import os; os.makedirs(sys.argv[1] + '/OUTBOX', exist_ok=True)\n"

@@ -8,8 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "hydride"))
-import gather  # noqa: E402
+from fracas_tools.scripts import load
+
+gather = load(Path(__file__).resolve().parents[1] / "hydride" / "gather.py")
 
 # (bonding, seed): shares HY_HY, HY_MA, MA_MA
 SHARES = {("weak", 1): (0.00, 0.70, 0.30), ("weak", 2): (0.10, 0.50, 0.40), ("weak", 3): (0.05, 0.60, 0.35),

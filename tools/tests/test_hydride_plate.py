@@ -10,8 +10,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "hydride"))
-import hydride_plate as hp  # noqa: E402
+from fracas_tools.scripts import load
+
+hp = load(Path(__file__).resolve().parents[1] / "hydride" / "hydride_plate.py")
 
 pytest.importorskip("gmsh")
 
@@ -106,11 +107,8 @@ def test_thin_hydrides_refused(tmp_path):
 def test_ctest_decks_are_the_generators(tmp_path):
     """The committed decks of validation.hydrided_plate are what gen.py writes today
     (a change of the generator that moves them shows here, not as a changed result)."""
-    import importlib.util
     here = Path(__file__).resolve().parents[2] / "test_cases" / "validation" / "hydrided_plate"
-    spec = importlib.util.spec_from_file_location("hydrided_plate_gen", here / "gen.py")
-    gen = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(gen)
+    gen = load(here / "gen.py")
     gen.write(tmp_path / "weak", "weak")
     files = sorted(p.name for p in (here / "weak" / "DATBOX").iterdir())
     match, mismatch, errors = filecmp.cmpfiles(here / "weak" / "DATBOX", tmp_path / "weak" / "DATBOX", files,

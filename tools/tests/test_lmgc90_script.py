@@ -6,7 +6,6 @@ import subprocess
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from fracas_tools.lmgc90 import read_run_script  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]

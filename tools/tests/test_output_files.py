@@ -7,7 +7,7 @@ variable FRACAS_MAKE_SAMPLE (set by ctest), else from a build tree of the
 repository (build/*/test_cases/unit/); without it the tests are skipped.
 
     FRACAS_MAKE_SAMPLE=build/release/test_cases/unit/make_sample_results \\
-        /usr/bin/python3 -m pytest -q tools/tests/test_output_files.py
+        build/release/bin/fracas-python -m pytest -q tools/tests/test_output_files.py
 """
 
 import glob

@@ -12,16 +12,13 @@ import numpy as np
 import pytest
 
 TOOLS = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(TOOLS))
-sys.path.insert(0, str(TOOLS / "validation"))
-sys.path.insert(0, str(TOOLS / "validation_polygons"))
 
 h5py = pytest.importorskip("h5py")
 from fracas_tools import synthetic  # noqa: E402
 from fracas_tools.checks import Checker  # noqa: E402
 from fracas_tools.results import Results, Run  # noqa: E402
-import polytools  # noqa: E402
-import valtools  # noqa: E402
+from fracas_tools import polytools  # noqa: E402
+from fracas_tools import valtools  # noqa: E402
 
 
 @pytest.fixture()

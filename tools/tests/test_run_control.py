@@ -12,7 +12,6 @@ import pytest
 
 from fracas_run import ROOT, copy_deck, lmgc90_decks, run
 
-sys.path.insert(0, str(ROOT / "tools"))
 from fracas_tools.lmgc90 import read_run_script  # noqa: E402
 
 

@@ -12,7 +12,6 @@ TOOLS = Path(__file__).resolve().parents[1]
 REPO = TOOLS.parent
 # The LMGC90 decks: the path CMake was configured with (FRACAS_LMGC90_DECKS), else ../shared.
 DECKS = Path(os.environ.get("FRACAS_LMGC90_DECKS", REPO / ".." / "shared" / "lmgc90_decks"))
-sys.path.insert(0, str(TOOLS))
 
 from fracas_tools import read_case  # noqa: E402
 

@@ -8,7 +8,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from fracas_tools import Case, read_case  # noqa: E402
 from fracas_tools import generators as gen  # noqa: E402

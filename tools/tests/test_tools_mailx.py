@@ -9,7 +9,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from fracas_tools import Case, DatboxError, read_case  # noqa: E402
 from fracas_tools import datbox  # noqa: E402
@@ -292,3 +291,41 @@ def test_plalp_record_layout(tmp_path):
     v.write(p)
     back = read_vloc_rloc(p)
     assert back.text() == v.text() and (back.records[0].cdver, back.records[0].anseg) == (5, 7)
+
+
+def test_element_table_is_the_solvers(tmp_path):
+    """fracas_tools.mailx.ELEMENTS (the one element table of the Python tools) against
+    what the solver writes for one body of each kind: nodes per element, VTK cell type,
+    Gauss-point states (/mesh of fracas.h5) and points printed per element (GPV.OUT)."""
+    from fracas_run import run
+    from fracas_tools.mailx import ELEMENTS
+    from fracas_tools.results import Run
+    c = Case(gravity=(0.0, -9.81))
+    c.add_material("BLOCK", 2000.0, "ELAS", young=1e9, poisson=0.3)
+    square = [[0, 0], [1, 0], [1, 1], [0, 1]]
+    mids = [[0.5, 0], [1, 0.5], [0.5, 1], [0, 0.5]]
+    shapes = {"T3xxx": (square[:3], (1, 2, 3)), "Q4xxx": (square, (1, 2, 3, 4)),
+              "T6xxx": (square[:3] + [[0.5, 0], [0.5, 0.5], [0, 0.5]], (1, 2, 3, 4, 5, 6)),
+              "Q8xxx": (square + mids, (1, 2, 3, 4, 5, 6, 7, 8))}
+    for k, (kind, (nodes, conn)) in enumerate(shapes.items()):
+        c.add_model(f"M2D{kind[:2]}", kind)
+        b = c.add_mesh_body(np.array(nodes, dtype=float) + [2.0 * k, 0.0], [conn], f"M2D{kind[:2]}", "BLOCK")
+        b.groups["base"] = [1, 2]
+        b.fix("base")
+    c.run.set(time_step=1e-4, number_of_steps=1, output_hdf5_every=1, output_dof_every=1, output_vtk_every=0)
+    c.write(tmp_path / "elements")
+    p = run("-q", tmp_path / "elements")
+    assert p.returncode == 0, p.stderr
+    with Run(tmp_path / "elements") as r:
+        g = r.file["mesh"]
+        nodes = np.diff(g["element_first_node"][()])
+        gauss = np.diff(g["element_first_gauss_point"][()])
+        vtk = g["element_vtk_type"][()]
+    gpv = read_gpv(tmp_path / "elements" / "OUTBOX" / "GPV.OUT.1")
+    printed = [len(e.rows) for b in gpv.bodies for e in b.elements]
+    rows_per_point = [len(e.rows) // ELEMENTS[k].gauss_gpv for k, b, e in
+                      zip(shapes, gpv.bodies, (b.elements[0] for b in gpv.bodies))]
+    assert [(int(n), int(gp), int(t)) for n, gp, t in zip(nodes, gauss, vtk)] == \
+        [(e.nodes, e.gauss, e.vtk) for e in (ELEMENTS[k] for k in shapes)]
+    assert printed == [ELEMENTS[k].gauss_gpv * rows for k, rows in zip(shapes, rows_per_point)]
+    assert rows_per_point == [2, 2, 2, 2]              # elastic: a stress and a strain line per point

@@ -11,7 +11,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from fracas_tools import Case, read_case  # noqa: E402
 from fracas_tools.mesh import (explode, family_colors, mecax_sets, mesh_from_arrays,  # noqa: E402
@@ -462,8 +461,7 @@ def test_generated_mesh_decks_pass_fracas_check(tmp_path):
     a Q4 block from add_mesh on a rigid ground, and the T3/Q8/T6/ELAS_PLAS case of
     test_tools_mailx."""
     import subprocess
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    from test_tools_mailx import mesh_case
+    from test_tools_mailx import mesh_case      # tools/tests is on sys.path under pytest
     exe = _fracas()
     decks = []
     mesh_case().write(tmp_path / "api")

@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 h5py = pytest.importorskip("h5py")
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from fracas_tools import post, synthetic  # noqa: E402
 

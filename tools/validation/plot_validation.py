@@ -25,8 +25,7 @@ sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 VAL = ROOT / "test_cases" / "validation"
-sys.path.insert(0, str(HERE))
-import valtools  # noqa: E402
+from fracas_tools import valtools  # noqa: E402
 
 CASES = {   # run name -> case directory
     "bouncing_disk": VAL / "bouncing_disk",
@@ -39,11 +38,8 @@ CASES = {   # run name -> case directory
 
 def load_gen(case):
     """The gen.py module of a case folder (its parameters)."""
-    import importlib.util
-    spec = importlib.util.spec_from_file_location(f"gen_{case}", VAL / case / "gen.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    from fracas_tools.scripts import load
+    return load(VAL / case / "gen.py")
 
 
 def run_cases(fracas, runs, rerun):

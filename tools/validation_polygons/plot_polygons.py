@@ -18,10 +18,8 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-import polytools as pt  # noqa: E402
+from fracas_tools import polytools as pt  # noqa: E402
 
-pt.add_tools_path()
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -128,8 +126,8 @@ def plot_arch(case_dir, run_dir, out):
 
 
 def plot_heyman(case_dir, run_dir, out):
-    sys.path.insert(0, str(Path(case_dir).resolve()))
-    import gen  # the arch_heyman deck parameters
+    from fracas_tools.scripts import load
+    gen = load(Path(case_dir) / "gen.py")   # the arch_heyman deck parameters
     from fracas_tools import datbox
     case = datbox.read_case(case_dir)
     res = pt.Results(run_dir)

@@ -6,7 +6,7 @@ of fixed JONCx walls under gravity; IQS_CLB friction 0.3 disk/disk, 0.5 disk/wal
 dt = 1e-3 s, 1000 steps; VTK (DISPLAY/) and HDF5 snapshots every 10 steps. This is
 fracas_tools.generators.demo_deposit, written here as committed DATBOX files.
 
-    /usr/bin/python3 test_cases/examples/demo_deposit/gen.py      # rewrites ./DATBOX
+    build/release/bin/fracas-python test_cases/examples/demo_deposit/gen.py      # rewrites ./DATBOX
     build/release/bin/fracas --output build/demo test_cases/examples/demo_deposit   # then open build/demo/DISPLAY/fracas.pvd
 """
 
@@ -14,7 +14,6 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools"))
 
 from fracas_tools import generators as gen  # noqa: E402
 

@@ -8,7 +8,7 @@ courses off the wall. Interfaces touching at the start are glued (beta = 1); the
 touches later, so it is never glued. dt = 5e-4 s, 2000 steps (1 s); VTK (DISPLAY/) and
 HDF5 snapshots every 20 steps.
 
-    /usr/bin/python3 test_cases/examples/glued_wall/gen.py      # rewrites ./DATBOX
+    build/release/bin/fracas-python test_cases/examples/glued_wall/gen.py      # rewrites ./DATBOX
     build/release/bin/fracas --output build/glued_wall test_cases/examples/glued_wall   # then open build/glued_wall/DISPLAY/fracas.pvd
 
 In ParaView colour the contact points (contacts_*.vtu, part 1) by `beta` (1 sound, 0
@@ -20,7 +20,6 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools"))
 
 from fracas_tools import Case, generators as gen  # noqa: E402
 

@@ -12,7 +12,7 @@ MAILx body per element) and every shared edge glued by MP3_CZM (C h / E = 50); t
 notch lips are left uncohesive. Plane strain, dt = 0.25 us, 200 us; VTK and HDF5
 every 8 us.
 
-    /usr/bin/python3 test_cases/examples/notched_plate_impact/gen.py   # rewrites ./DATBOX
+    build/release/bin/fracas-python test_cases/examples/notched_plate_impact/gen.py   # rewrites ./DATBOX
     build/release/bin/fracas --output build/notched_plate_impact test_cases/examples/notched_plate_impact
     paraview build/notched_plate_impact/DISPLAY/fracas.pvd             # about 30 s of run first
 
@@ -25,7 +25,6 @@ from pathlib import Path
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools"))
 from fracas_tools.cohesive import mp3_separation_opening, perturb_nodes, see_alert, smooth_ramp  # noqa: E402
 
 E, NU, RHO = 32.0e9, 0.2, 2450.0

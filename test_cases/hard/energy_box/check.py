@@ -12,10 +12,8 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation_polygons"))
 import gen          # noqa: E402  (the deck parameters)
-import polytools as pt  # noqa: E402
+from fracas_tools import polytools as pt  # noqa: E402
 
 TOL_E = 1.0e-6            # |E(t) - E(0)| / E(0) over the whole run
 TOL_BALANCE = 1.0e-9      # |balance_error| / E(0)

@@ -14,10 +14,8 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation_polygons"))
 import gen          # noqa: E402  (the deck parameters)
-import polytools as pt  # noqa: E402
+from fracas_tools import polytools as pt  # noqa: E402
 
 TOL_MEAN_RUN = 1.0e-3     # x d: mean overlap, any step
 TOL_MEAN_SETTLED = 2.0e-4 # x d: mean overlap of the settled packing

@@ -13,10 +13,8 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation_polygons"))
 import gen          # noqa: E402  (the deck parameters)
-import polytools as pt  # noqa: E402
+from fracas_tools import polytools as pt  # noqa: E402
 
 TOL_RESULTANT = 1.0e-6    # resultant of the wall reactions vs the weight (rel., settled)
 TOL_ENERGY = 1.0e-6       # energy gain, relative to m g LIFT

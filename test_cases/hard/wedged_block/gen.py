@@ -20,9 +20,7 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation_polygons"))
-import polytools as pt  # noqa: E402
-pt.add_tools_path()
+from fracas_tools import polytools as pt  # noqa: E402
 from fracas_tools.pre import polygon_area  # noqa: E402  (tools path set by polytools users)
 
 G = 9.81

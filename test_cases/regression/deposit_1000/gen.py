@@ -6,8 +6,8 @@ square lattice in a 0.266 m wide box of four fixed JONCx walls (floor, two sides
 well above the cloud), falling under gravity; IQS_CLB friction 0.3 disk/disk and 0.5
 disk/wall, alert distance 2 mm (rmin/2); dt = 1e-3 s.
 
-    /usr/bin/python3 test_cases/regression/deposit_1000/gen.py     # rewrites ./DATBOX
-    /usr/bin/python3 test_cases/regression/deposit_1000/gen.py --seed 2 --out /tmp/d2
+    build/release/bin/fracas-python test_cases/regression/deposit_1000/gen.py     # rewrites ./DATBOX
+    build/release/bin/fracas-python test_cases/regression/deposit_1000/gen.py --seed 2 --out /tmp/d2
                                           # another sample of the same deck (sensitivity study)
 
 The committed DATBOX is the output of this script; change the script, not the files.
@@ -17,7 +17,6 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools"))
 
 from fracas_tools import Case                      # noqa: E402
 from fracas_tools import generators as gen         # noqa: E402

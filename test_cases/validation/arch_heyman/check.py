@@ -13,11 +13,10 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation_polygons"))
 import gen          # noqa: E402  (the deck parameters)
-import polytools as pt  # noqa: E402
-import arch_limit   # noqa: E402
+from fracas_tools import polytools as pt  # noqa: E402
+from fracas_tools.scripts import load  # noqa: E402
+arch_limit = load(HERE.parents[2] / "tools" / "validation_polygons" / "arch_limit.py")   # the reference
 
 # "stands" and "collapses", numerically (README.md)
 STAND_MAX_DISP = 1.0e-5       # x R: largest voussoir displacement over the run

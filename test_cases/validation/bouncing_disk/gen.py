@@ -10,10 +10,8 @@ from pathlib import Path
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation"))
-import valtools  # noqa: E402
+from fracas_tools import valtools  # noqa: E402
 
-valtools.add_tools_path()
 
 G = 9.81            # gravity (m/s^2)
 H0 = 1.0            # drop height of the disk bottom above the wall top (m)

@@ -26,10 +26,12 @@ from pathlib import Path
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent / "czm_step_size"))
-import study  # noqa: E402  (czm_step_size: the deck, the law's energy, the interface work)
-from study import gen, cf, CzmRun  # noqa: E402
+from fracas_tools.scripts import load  # noqa: E402
+from fracas_tools.results import Results  # noqa: E402
 import numpy as np  # noqa: E402
+
+study = load(HERE.parent / "czm_step_size" / "study.py")   # the deck, the law's energy, the interface work
+gen, cf = study.gen, study.cf
 
 
 AFTER = 5    # steps run after the break: the step must have grown back by then
@@ -44,7 +46,7 @@ def run_case(fracas, name, n_soft, out, scheme, limit):
                     "--set", f"crack_step_limit={limit}", "--set", f"crack_step_cuts={CUTS}",
                     "--set", f"number_of_steps={steps}", str(out)],
                    check=True)
-    run = CzmRun(out, bodies=False)
+    run = Results(out, bodies=False)
     _, d_end = study.interface_work(run)
     ref = cf.Closed.of(law).damage(d_end, 1) * gen.GLUED
     return run, run.series["damage_dissipated"][-1] / ref

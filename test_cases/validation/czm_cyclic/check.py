@@ -13,14 +13,10 @@ import numpy as np
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[2]
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(ROOT / "tools" / "validation"))
-sys.path.insert(0, str(ROOT / "tools" / "czm"))
-sys.path.insert(0, str(HERE.parent))
 import gen          # noqa: E402
-import valtools     # noqa: E402
-from czmrun import CzmRun  # noqa: E402
-import czm_closed_forms as cf  # noqa: E402  (independent closed forms, czm.md 1.2)
+from fracas_tools import valtools     # noqa: E402
+from fracas_tools.results import Results  # noqa: E402
+from fracas_tools import czm_closed_forms as cf  # noqa: E402  (independent closed forms, czm.md 1.2)
 
 LOWER, UPPER = 1, 2
 ENERGY_TOL = 1e-2
@@ -32,7 +28,7 @@ def main():
     name = sys.argv[2]
     # References from the closed forms of czm.md 1.2 (not the solver's update mirrored)
     law = cf.Closed.of(gen.LAWS[name][1])
-    run = CzmRun(sys.argv[1], bodies=False)
+    run = Results(sys.argv[1], bodies=False)
     ck = valtools.Checker(f"czm_cyclic/{name} ({gen.LAWS[name][0]}, cohesive_damage {run.cohesive_damage})")
     segs, _ = gen.schedule(name)
     pr = run.pair(UPPER, LOWER)

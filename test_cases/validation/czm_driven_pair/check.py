@@ -11,12 +11,13 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 ROOT = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(ROOT / "tools" / "czm"))
-from czmrun import CzmRun  # noqa: E402
+from fracas_tools import czm_closed_forms as cf  # noqa: E402
+from fracas_tools.results import Results  # noqa: E402
 
 H, V, THETA = 1.0e-4, 1.0e-2, 0.5      # COMMAND.DAT, DRV_DOF.DAT
 CN, W, L = 1.0e10, 40.0, 0.5           # TACT_BEHAV.DAT (IQS_MAC_CZM, b = 0); L: half the 1 m face
 REL = 1e-10                            # round-off of the closed form
+LAW = cf.Closed("MAC", cn=CN, ct=1.0e11, b=0.0, w=W)   # the closed forms of czm.md (fracas_tools)
 
 
 def closed_form(nsteps):
@@ -27,13 +28,13 @@ def closed_form(nsteps):
     beta of the step's start: rn_k / h = -L beta_{k-1}^2 cn un_k."""
     k = np.arange(1, nsteps + 1)
     un = (k + 0.5) * H * V
-    beta = np.minimum.accumulate(np.minimum(1.0, W / (CN * un**2)))
+    beta = np.minimum.accumulate(LAW.beta(un, 1))          # min(1, w / (cn u^2)), irreversible
     beta_start = np.concatenate([[1.0], beta[:-1]])
     return un, beta, -L * beta_start**2 * CN * un
 
 
 def main():
-    run = CzmRun(sys.argv[1])
+    run = Results(sys.argv[1])
     pair = run.pair(2, 1)
     un, beta, rn = closed_form(len(run.step))
     k = run.step - 1

@@ -17,12 +17,9 @@ import numpy as np
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[2]
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(ROOT / "tools" / "validation"))
-sys.path.insert(0, str(ROOT / "tools" / "czm"))
 import gen          # noqa: E402
-import valtools     # noqa: E402
-from czmrun import CzmRun  # noqa: E402
+from fracas_tools import valtools     # noqa: E402
+from fracas_tools.results import Results  # noqa: E402
 
 GROUND, BLOCK = 1, 2
 AUDIT_TOL = 1e-2
@@ -56,7 +53,7 @@ def audit(run, pr):
 
 
 def main():
-    run = CzmRun(valtools.run_dir_from_argv(HERE), full=True)
+    run = Results(valtools.run_dir_from_argv(HERE))
     ck = valtools.Checker("czm_energy (MP3_CZM, pushed glued block)")
     law, s = gen.LAW, run.series
     pr = run.pair(BLOCK, GROUND)

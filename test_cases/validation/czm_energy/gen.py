@@ -13,9 +13,7 @@ from pathlib import Path
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[2]
-sys.path.insert(0, str(ROOT / "tools" / "czm"))
-sys.path.insert(0, str(ROOT / "tools"))
-from czmlaws import Law  # noqa: E402
+from fracas_tools.cohesive import Law  # noqa: E402
 
 G = 9.81
 RHO = 2000.0           # block density: m = 400 kg/m, weight 3924 N/m

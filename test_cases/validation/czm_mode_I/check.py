@@ -15,14 +15,10 @@ import numpy as np
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[2]
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(ROOT / "tools" / "validation"))
-sys.path.insert(0, str(ROOT / "tools" / "czm"))
-sys.path.insert(0, str(HERE.parent))
 import gen          # noqa: E402  (the deck parameters)
-import valtools     # noqa: E402
-from czmrun import CzmRun  # noqa: E402
-import czm_closed_forms as cf  # noqa: E402  (independent closed forms, czm.md 1.2)
+from fracas_tools import valtools     # noqa: E402
+from fracas_tools.results import Results  # noqa: E402
+from fracas_tools import czm_closed_forms as cf  # noqa: E402  (independent closed forms, czm.md 1.2)
 
 LOWER, UPPER = 1, 2         # body serial numbers (gen.py order)
 PEAK_TOL = 5e-3             # peak stress (brief: 0.5 %)
@@ -101,7 +97,7 @@ def main():
     mode = 2 if "--shear" in sys.argv[3:] else 1
     # References from the closed forms of czm.md 1.2 (not the solver's update mirrored)
     law = cf.Closed.of(gen.LAWS[name][1])
-    run = CzmRun(sys.argv[1], bodies=False)
+    run = Results(sys.argv[1], bodies=False)
     law_name = gen.LAWS[name][0].replace("IQS_", "") if mesh else gen.LAWS[name][0]
     what = ", meshed blocks" if mesh else ""
     what += ", sliding (mode II)" if mode == 2 else ""

@@ -12,14 +12,10 @@ import numpy as np
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[2]
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(ROOT / "tools" / "validation"))
-sys.path.insert(0, str(ROOT / "tools" / "czm"))
-sys.path.insert(0, str(HERE.parent))
 import gen          # noqa: E402  (the deck parameters)
-import valtools     # noqa: E402
-from czmrun import CzmRun  # noqa: E402
-import czm_closed_forms as cf  # noqa: E402  (independent closed forms, czm.md 1.2)
+from fracas_tools import valtools     # noqa: E402
+from fracas_tools.results import Results  # noqa: E402
+from fracas_tools import czm_closed_forms as cf  # noqa: E402  (independent closed forms, czm.md 1.2)
 
 _trapz = getattr(np, "trapezoid", None) or np.trapz   # numpy 2 renamed trapz
 
@@ -42,7 +38,7 @@ def main():
     name = sys.argv[2]
     # References from the closed forms of czm.md 1.2 (not the solver's update mirrored)
     law = cf.Closed.of(gen.LAWS[name][1])
-    run = CzmRun(sys.argv[1], full=True)
+    run = Results(sys.argv[1])
     ck = valtools.Checker(f"czm_mode_II/{name} ({gen.LAWS[name][0]})")
     pr = run.pair(UPPER, LOWER)
     n1, n2, _ = gen.schedule(name)

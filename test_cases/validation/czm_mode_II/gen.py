@@ -15,9 +15,7 @@ from pathlib import Path
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[2]
-sys.path.insert(0, str(ROOT / "tools" / "czm"))
-sys.path.insert(0, str(ROOT / "tools"))
-from czmlaws import Law, ramp_schedule  # noqa: E402
+from fracas_tools.cohesive import Law, ramp_schedule  # noqa: E402
 
 DT = 1.0e-4            # time step (s)
 RHO = 2000.0           # density (kg/m^3)

@@ -14,13 +14,10 @@ import numpy as np
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[2]
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(ROOT / "tools" / "validation"))
-sys.path.insert(0, str(ROOT / "tools" / "czm"))
 import gen          # noqa: E402
-import valtools     # noqa: E402
-from czmlaws import mac_rate_curve  # noqa: E402
-from czmrun import CzmRun  # noqa: E402
+from fracas_tools import valtools     # noqa: E402
+from fracas_tools.cohesive import mac_rate_curve  # noqa: E402
+from fracas_tools.results import Results  # noqa: E402
 
 _trapz = getattr(np, "trapezoid", None) or np.trapz   # numpy 2 renamed trapz
 
@@ -54,7 +51,7 @@ def continuous(law, v, t_end):
 
 
 def main():
-    run = CzmRun(valtools.run_dir_from_argv(HERE))
+    run = Results(valtools.run_dir_from_argv(HERE))
     ck = valtools.Checker("czm_rate (IQS_MAC_CZM, b > 0)")
     law, u0, h = gen.LAW, gen.U0, run.h
     s_rate_free = math.sqrt(law.cn * law.w)

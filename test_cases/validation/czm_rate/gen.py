@@ -13,9 +13,7 @@ from pathlib import Path
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[2]
-sys.path.insert(0, str(ROOT / "tools" / "czm"))
-sys.path.insert(0, str(ROOT / "tools"))
-from czmlaws import Law  # noqa: E402
+from fracas_tools.cohesive import Law  # noqa: E402
 
 LAW = Law.mac(cn=1.0e10, ct=1.0e11, b=1.0e-2, w=40.0)   # tau_b = b/w = 2.5e-4 s
 U0 = math.sqrt(LAW.w / LAW.cn)                          # 6.3246e-5 m

@@ -23,13 +23,10 @@ from pathlib import Path
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[2]
-sys.path.insert(0, str(HERE.parent / "czm_mode_I"))
-sys.path.insert(0, str(HERE.parent))
-sys.path.insert(0, str(ROOT / "tools" / "czm"))
-sys.path.insert(0, str(ROOT / "tools"))
-import gen                      # noqa: E402  (czm_mode_I: the laws and the scene)
-import czm_closed_forms as cf   # noqa: E402
-from czmrun import CzmRun       # noqa: E402
+from fracas_tools.scripts import load  # noqa: E402
+gen = load(HERE.parent / "czm_mode_I" / "gen.py")   # czm_mode_I: the laws and the scene
+from fracas_tools import czm_closed_forms as cf   # noqa: E402
+from fracas_tools.results import Results       # noqa: E402
 import numpy as np              # noqa: E402
 
 MAC_END = 30.0     # MAC's run ends at 30 d_peak (its beta only tends to 0)
@@ -91,7 +88,7 @@ def main():
             law = deck(name, n_soft, case_dir)
             subprocess.run([a.fracas, "-q", "--overwrite", "--set", f"cohesive_damage={a.scheme}", str(case_dir)],
                            check=True)
-            run = CzmRun(case_dir, bodies=False)
+            run = Results(case_dir, bodies=False)
             closed = cf.Closed.of(law)
             work, d_end = interface_work(run)
             ref = closed.damage(d_end, 1) * gen.GLUED

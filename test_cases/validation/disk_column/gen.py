@@ -20,10 +20,8 @@ from pathlib import Path
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation"))
-import valtools  # noqa: E402
+from fracas_tools import valtools  # noqa: E402
 
-valtools.add_tools_path()
 
 G = 9.81
 RHO = 1000.0                                       # walls (irrelevant)

@@ -14,10 +14,8 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation_polygons"))
 import gen          # noqa: E402  (the deck parameters)
-import polytools as pt  # noqa: E402
+from fracas_tools import polytools as pt  # noqa: E402
 
 GROUND = 1
 TOL_REST = 1.0e-8         # m, rad: motion of the holding pyramid (deck rounding of the top disk: 5e-9 m)

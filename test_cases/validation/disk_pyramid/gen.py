@@ -17,10 +17,8 @@ from pathlib import Path
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation_polygons"))
-import polytools as pt  # noqa: E402
+from fracas_tools import polytools as pt  # noqa: E402
 
-pt.add_tools_path()
 
 G = 9.81
 RHO = 1000.0

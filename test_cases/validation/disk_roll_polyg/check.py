@@ -13,10 +13,8 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation_polygons"))
 import gen          # noqa: E402  (the deck parameters)
-import polytools as pt  # noqa: E402
+from fracas_tools import polytools as pt  # noqa: E402
 
 TOL_REL = 1.0e-8          # distances, speeds, spins (NLGS tolerance); constant accelerations: exact for theta = 0.5
 TOL_X = 1.0e-9            # m: normal displacement (the disk stays on the incline)

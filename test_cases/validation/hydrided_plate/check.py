@@ -20,9 +20,8 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "hydride"))
-sys.path.insert(0, str(HERE.parents[2] / "tools"))
-import hydride_post as post  # noqa: E402
+from fracas_tools.scripts import load  # noqa: E402
+post = load(HERE.parents[2] / "tools" / "hydride" / "hydride_post.py")
 from fracas_tools.checks import Checker  # noqa: E402
 
 # Measured (Fracas, this deck, after the merge of main's check pass): HY_HY share 0 % weak

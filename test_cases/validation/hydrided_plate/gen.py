@@ -6,8 +6,8 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "hydride"))
-import hydride_plate as hp  # noqa: E402
+from fracas_tools.scripts import load  # noqa: E402
+hp = load(HERE.parents[2] / "tools" / "hydride" / "hydride_plate.py")
 
 GEOMETRY = hp.Geometry(width=16e-6, height=16e-6, thickness=(2e-6, 2.2e-6), aspect=(2.5, 3.5),
                        clearance=0.8e-6, notch=2.5e-6)

@@ -11,10 +11,8 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation"))
 import gen          # noqa: E402  (the deck parameters)
-import valtools     # noqa: E402
+from fracas_tools import valtools     # noqa: E402
 
 
 def expected_velocities(variant):

@@ -13,10 +13,8 @@ from pathlib import Path
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation"))
-import valtools  # noqa: E402
+from fracas_tools import valtools  # noqa: E402
 
-valtools.add_tools_path()
 
 N = 5               # disks
 R = 0.5             # radius (m): touching centres 1 m apart, exact in binary

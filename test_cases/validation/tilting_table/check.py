@@ -13,10 +13,8 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "validation_polygons"))
 import gen          # noqa: E402  (the deck parameters)
-import polytools as pt  # noqa: E402
+from fracas_tools import polytools as pt  # noqa: E402
 
 TOL_BRIEF = 0.5           # deg: onset angle vs alpha_c (the project's requirement)
 TOL_ONSET = 0.01          # deg: onset angle vs alpha_c + detection lag, and static onset vs alpha_c

@@ -12,9 +12,8 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
 import gen  # noqa: E402
-from fractools import Checker, MeshRun, check_energy, crack_arms, run_dir_from_argv, tip_speed, \
+from fracas_tools.fractools import Checker, MeshRun, check_energy, crack_arms, run_dir_from_argv, tip_speed, \
     wave_speeds  # noqa: E402
 
 

@@ -13,8 +13,7 @@ from pathlib import Path
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "fracture"))
-from fractools import edge_traction, mp3_separation_opening, perturb_nodes, safe_alert, wave_speeds  # noqa: E402
+from fracas_tools.fractools import edge_traction, mp3_separation_opening, perturb_nodes, safe_alert, wave_speeds  # noqa: E402
 
 E, NU, RHO = 32.0e9, 0.2, 2450.0
 GC = 3.0

@@ -22,8 +22,7 @@ from pathlib import Path
 import numpy as np
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "tools" / "fracture"))
-from fractools import Grid, smooth_ramp  # noqa: E402
+from fracas_tools.fractools import Grid, smooth_ramp  # noqa: E402
 
 E, NU, RHO = 7.0e10, 0.3, 2700.0          # aluminium-like; c = sqrt(E/rho) = 5092 m/s
 L, H, N = 0.1, 0.01, 10                   # bar length, height, elements

@@ -16,8 +16,7 @@ from pathlib import Path
 import numpy as np
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "tools" / "fracture"))
-from fractools import Grid, mp3_separation_opening, smooth_ramp  # noqa: E402
+from fracas_tools.fractools import Grid, mp3_separation_opening, smooth_ramp  # noqa: E402
 
 E, NU, RHO = 135.3e9, 0.3, 1500.0      # the Alfano-Crisfield laminate's E11, isotropic here
 GC = 280.0                             # J/m2

@@ -14,8 +14,7 @@ import sys
 from pathlib import Path
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "tools" / "fracture"))
-from fractools import Grid, mp3_separation_opening, smooth_ramp  # noqa: E402
+from fracas_tools.fractools import Grid, mp3_separation_opening, smooth_ramp  # noqa: E402
 
 E, NU, RHO = 135.3e9, 0.3, 1500.0
 GC = 280.0                             # mode II fracture energy (MP3: one w for all modes)

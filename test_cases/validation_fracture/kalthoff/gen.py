@@ -14,8 +14,7 @@ from pathlib import Path
 
 sys.dont_write_bytecode = True
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools" / "fracture"))
-from fractools import perturb_nodes, safe_alert, smooth_ramp  # noqa: E402
+from fracas_tools.fractools import perturb_nodes, safe_alert, smooth_ramp  # noqa: E402
 
 E, NU, RHO = 190.0e9, 0.3, 8000.0
 GC = 2.213e4

@@ -24,8 +24,7 @@ from pathlib import Path
 import numpy as np
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "tools" / "fracture"))
-from fractools import Grid  # noqa: E402
+from fracas_tools.fractools import Grid  # noqa: E402
 
 E, NU, RHO = 2.0e11, 0.0, 8000.0
 C_WAVE = (E / RHO) ** 0.5

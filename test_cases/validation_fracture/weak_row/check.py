@@ -16,9 +16,7 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parents[2] / "tools"))
 sys.dont_write_bytecode = True
-sys.path.insert(0, str(HERE))
 from fracas_tools.checks import Checker  # noqa: E402
 from fracas_tools.results import Run  # noqa: E402
 import gen  # noqa: E402

@@ -18,9 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from meshdeck import Case, node_id, one_based, quads, rect_grid  # noqa: E402
-from valmesh import Checker, args, run_fracas  # noqa: E402
+from fracas_tools.valmesh import Case, node_id, one_based, quads, rect_grid  # noqa: E402
+from fracas_tools.valmesh import Checker, args, run_fracas  # noqa: E402
 
 E, NU, RHO = 1.0e9, 0.3, 1000.0
 L, H, P = 1.0, 0.1, 1000.0

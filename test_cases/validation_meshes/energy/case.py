@@ -22,9 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from meshdeck import Case, one_based, quads, rect_grid  # noqa: E402
-from valmesh import Checker, args, run_fracas  # noqa: E402
+from fracas_tools.valmesh import Case, one_based, quads, rect_grid  # noqa: E402
+from fracas_tools.valmesh import Checker, args, run_fracas  # noqa: E402
 
 E, NU, RHO = 1.0e9, 0.3, 2000.0
 LX, LY = 0.2, 0.1

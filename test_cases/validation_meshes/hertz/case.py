@@ -21,9 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from meshdeck import Case, one_based  # noqa: E402
-from valmesh import Checker, args, run_fracas  # noqa: E402
+from fracas_tools.valmesh import Case, one_based  # noqa: E402
+from fracas_tools.valmesh import Checker, args, run_fracas  # noqa: E402
 
 E, NU, RHO, R = 2.0e11, 0.3, 7800.0, 0.05
 E_STAR = E / (1 - NU ** 2)

@@ -23,9 +23,8 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import brentq
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from meshdeck import Case  # noqa: E402
-from valmesh import Checker, args, run_fracas  # noqa: E402
+from fracas_tools.valmesh import Case  # noqa: E402
+from fracas_tools.valmesh import Checker, args, run_fracas  # noqa: E402
 
 E, NU, SIG0, HARD, RHO = 2.0e11, 0.3, 2.0e8, 2.0e11, 1.0
 H, DEPS = 1.0, 1.0e-4

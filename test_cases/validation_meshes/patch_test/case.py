@@ -11,15 +11,12 @@ digits."""
 import sys
 from pathlib import Path
 
-import re
-
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from meshdeck import Case, node_id, one_based, quads, rect_grid, triangles  # noqa: E402
-from valmesh import Checker, args, run_fracas  # noqa: E402
+from fracas_tools.valmesh import Case, node_id, one_based, quads, rect_grid, triangles  # noqa: E402
+from fracas_tools.valmesh import Checker, args, run_fracas  # noqa: E402
+from fracas_tools.outbox import read_gpv  # noqa: E402
 
-NUM = re.compile(r"[-+]?\d*\.\d+[DE][-+]\d+")
 E, NU, RHO = 2.0e11, 0.3, 7800.0
 L = np.array([[2.0e-3, 1.0e-3], [-0.5e-3, -1.0e-3]])   # velocity gradient (1/s)
 SIZE, N = 0.1, 4
@@ -118,15 +115,9 @@ def main():
         ck.at_most(f"{name}: max |eps - sym(L) t| / max |sym(L) t|",
                    np.abs(gp[:, 4:8] - strain_ex).max() / np.abs(strain_ex).max(), 1e-10)
         # The executable's GPV.OUT at its printed digits.
-        vals = []
-        lines = Path(case, "OUTBOX", "GPV.OUT.1").read_text().splitlines()
-        for i, ln in enumerate(lines):
-            if ln.startswith(" MECAx"):
-                j = i + 1
-                while j < len(lines) and lines[j].strip() and not lines[j].startswith("$"):
-                    vals.append([float(v.replace("D", "E")) for v in NUM.findall(lines[j])])
-                    j += 2        # stress lines (the strain line follows each)
-        vals = np.array(vals)
+        gpv = read_gpv(Path(case, "OUTBOX", "GPV.OUT.1"))
+        # stress lines (the strain line follows each)
+        vals = np.array([row for b in gpv.bodies for e in b.elements for row in e.rows[0::2]])
         ck.at_most(f"{name}: GPV.OUT stress (7 digits) vs D eps",
                    np.abs(vals - sig).max() / np.abs(sig).max(), 1e-6)
     for kind, plane in (("T3", "strain"), ("Q4", "stress")):

@@ -3,8 +3,7 @@ test_cases/hard/*, test_cases/examples/{masonry_wall,arch}): small geometry and
 deck-precision helpers; Results (the one reader of fracas.h5) and Checker come from
 fracas_tools (results, checks) and are re-exported here.
 
-    sys.path.insert(0, str(repo / "tools" / "validation_polygons"))
-    import polytools as pt
+    from fracas_tools import polytools as pt
     res = pt.Results(run_dir)                # run_dir/OUTBOX/fracas.h5
     F = res.force_on(isnap, body)            # (2,) resultant contact force on a body
     ck = pt.Checker("block_incline")
@@ -21,25 +20,17 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["repo_root", "add_tools_path", "run_dir_from_argv", "Results", "Checker",
+__all__ = ["repo_root", "run_dir_from_argv", "Results", "Checker",
            "rot", "unit", "rect", "fmt_g"]
 
 
 def repo_root():
-    """The repository root (two levels above this file)."""
+    """The repository root (two levels above this file: tools/fracas_tools/)."""
     return Path(__file__).resolve().parents[2]
 
 
-def add_tools_path():
-    """Make ``import fracas_tools`` work."""
-    p = str(repo_root() / "tools")
-    if p not in sys.path:
-        sys.path.insert(0, p)
-
-
-add_tools_path()
-from fracas_tools.checks import Checker  # noqa: E402  (the one Checker)
-from fracas_tools.results import Results  # noqa: E402  (the one reader of fracas.h5)
+from .checks import Checker  # noqa: F401  (the one Checker)
+from .results import Results  # noqa: F401  (the one reader of fracas.h5)
 
 
 def run_dir_from_argv(default):

@@ -1,11 +1,12 @@
 """Closed forms of the cohesive laws' pure-mode traction curves, written from
-../shared/reference/czm.md §1.2 independently of the solver and of tools/czm/czmlaws.py
-(which mirrors the solver's update): the traction sigma(d) piece by piece, its peak, the
+../shared/reference/czm.md §1.2 independently of the solver and of
+fracas_tools.cohesive.Law (the one implementation of the laws, which mirrors the solver's
+update; this module is no implementation of the laws but the tests' reference): the traction sigma(d) piece by piece, its peak, the
 opening at the peak, the work of separation and the damage energy after a monotonic
 opening to d. The validation checks compare the runs with these formulas, so an error
 shared by the Fortran update and its Python mirror still shows.
 
-    import czm_closed_forms as cf
+    from fracas_tools import czm_closed_forms as cf
     curve = cf.curve("MP3", mode=1, cn=1e11, ct=1e11, smax=1e6, w=40.0)
     curve.sigma(d), curve.peak, curve.d_peak, curve.total_work, curve.damage(d)
 
@@ -132,7 +133,7 @@ class Closed:
 
     @classmethod
     def of(cls, law):
-        """From a deck law object with .family and .p (tools/czm/czmlaws.Law)."""
+        """From a deck law object with .family and .p (fracas_tools.cohesive.Law)."""
         return cls(law.family, **law.p)
 
     def c(self, mode):

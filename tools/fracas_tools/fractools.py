@@ -11,16 +11,12 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[2]
-# The folder holding fracas_tools: tools/ in the sources, share/fracas/python installed.
-for _p in (Path(__file__).resolve().parents[1], ROOT / "tools" / "validation"):
-    if str(_p) not in sys.path:
-        sys.path.insert(0, str(_p))
+ROOT = Path(__file__).resolve().parents[2]     # the repository (tools/fracas_tools/ is two levels down)
 
-from fracas_tools.checks import Checker  # noqa: E402,F401
-from fracas_tools.fracture import MeshRun  # noqa: E402,F401
-# Deck helpers live in the package (installed with it); re-exported for the gen.py scripts.
-from fracas_tools.cohesive import mp3_separation_opening, perturb_nodes, safe_alert, smooth_ramp  # noqa: E402,F401
+from .checks import Checker  # noqa: F401
+from .fracture import MeshRun  # noqa: F401
+# Deck helpers of the package's cohesive module, re-exported for the gen.py scripts.
+from .cohesive import mp3_separation_opening, perturb_nodes, safe_alert, smooth_ramp  # noqa: F401
 
 __all__ = ["ROOT", "Checker", "MeshRun", "Grid", "structured_quads", "check_energy", "growth_energy",
            "run_dir_from_argv", "smooth_ramp", "edge_traction", "perturb_nodes", "safe_alert", "mp3_separation_opening",

@@ -2,7 +2,7 @@
 Results (the one reader of fracas.h5) and Checker come from fracas_tools and are
 re-exported here.
 
-    from valtools import Results, Checker, repo_root
+    from fracas_tools.valtools import Results, Checker, repo_root
     res = Results("path/to/run_dir")          # reads run_dir/OUTBOX/fracas.h5
     X, V = res.X, res.V                       # (nsnap, nb, 3) displacement, velocity
     ck = Checker("bouncing_disk")
@@ -20,25 +20,17 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["repo_root", "add_tools_path", "Results", "Checker", "run_dir_from_argv",
+__all__ = ["repo_root", "Results", "Checker", "run_dir_from_argv",
            "chain_gauss_seidel_rate"]
 
 
 def repo_root():
-    """The repository root (two levels above this file)."""
+    """The repository root (two levels above this file: tools/fracas_tools/)."""
     return Path(__file__).resolve().parents[2]
 
 
-def add_tools_path():
-    """Make ``import fracas_tools`` work (tools/ on sys.path)."""
-    p = str(repo_root() / "tools")
-    if p not in sys.path:
-        sys.path.insert(0, p)
-
-
-add_tools_path()
-from fracas_tools.checks import Checker  # noqa: E402  (the one Checker)
-from fracas_tools.results import Results  # noqa: E402  (the one reader of fracas.h5)
+from .checks import Checker  # noqa: F401  (the one Checker)
+from .results import Results  # noqa: F401  (the one reader of fracas.h5)
 
 
 def run_dir_from_argv(default):
