@@ -1,4 +1,5 @@
-"""What a broken interface edge and the crack length are (doc/output_layout.md, fracas_cracks):
+"""The crack series of a run (end to end; the unit test test_crack_definitions.f90 checks
+fracas_cracks on a hand-made interface): what a broken interface edge and the crack length are (doc/output_layout.md, fracas_cracks):
 an edge is broken when all its glued points are broken (beta 0), and crack_length sums the
 lengths of the broken edges; an edge with one point broken and one still holding is
 damaged, not broken. (Marking an edge broken when any one of its points is, left every
