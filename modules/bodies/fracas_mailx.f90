@@ -23,7 +23,7 @@ module fracas_mailx
   use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, el_geometry_ok, el_area
-  use fracas_bulk, only: bulk_t, bulk_j2, plane_strain, plane_stress, gp_size, bulk_from_material, &
+  use fracas_bulk, only: bulk_t, bulk_j2, bulk_elastic, plane_strain, plane_stress, gp_size, bulk_from_material, &
                          gp_pxx, gp_pzz, gp_p
   use fracas_sparse, only: sparse_t, sparse_from_triplets, sparse_matvec
   use fracas_linear_solver, only: factor_t, factor_build, factor_update, factor_solve, factor_free, &
@@ -71,11 +71,14 @@ module fracas_mailx
     logical, allocatable :: driven(:, :)       !< (2,nnodes) velocity-driven dofs
     logical, allocatable :: movable(:)         !< (n) some dof is free
     type(drive_t), allocatable :: drives(:)    !< drive%body is the mesh node
-    ! Elements: kind, material, nodes (mesh node numbers), Gauss points.
-    integer, allocatable :: el_kind(:), el_mat(:), el_first(:), el_nodes(:), el_gp(:)
+    ! Elements: kind, material (BULK_BEHAV.DAT), bulk law (index in mats),
+    ! nodes (mesh node numbers), Gauss points.
+    integer, allocatable :: el_kind(:), el_mat(:), el_bulk(:), el_first(:), el_nodes(:), el_gp(:)
+    !> Bulk laws: mats(k) the law of material k, mats(nmat + k) material k under
+    !> a finite-strain (neoh_) model.
     type(bulk_t), allocatable :: mats(:)
     real(wp), allocatable :: gp(:, :), gp_begin(:, :)   !< (gp_size, ngp) Gauss-point states
-    logical, allocatable :: nonlinear(:)       !< (n) some element is J2: Newton iterations
+    logical, allocatable :: nonlinear(:)       !< (n) some element is J2 or neo-Hookean: Newton iterations
     logical :: any_nonlinear = .false.
     logical, allocatable :: lumped(:)          !< (n) lumped mass
     real(wp), allocatable :: mdiag(:, :)       !< (2,nnodes) lumped mass (row sums if consistent)
@@ -116,7 +119,7 @@ contains
     type(deck_t), intent(in) :: deck
     type(mailx_t), intent(out) :: m
     real(wp), intent(in) :: h, theta
-    integer :: ib, b, nn, ne, ie, k, j, nel_nodes, ng, imat, kind, node
+    integer :: ib, b, nn, ne, ie, k, j, nel_nodes, ng, imat, kind, node, nlaw
     logical, allocatable :: used(:)
     real(wp) :: extent
     m%h = h
@@ -150,7 +153,8 @@ contains
     end do
     m%nnodes = nn; m%nelem = ne; m%ngp = ng
     allocate (m%node_body(nn), m%ref(2, nn), m%x(2, nn), m%xbegin(2, nn), m%v(2, nn), m%vbegin(2, nn), &
-              m%vfree(2, nn), m%driven(2, nn), m%movable(m%n), m%el_kind(ne), m%el_mat(ne), m%el_first(ne + 1), &
+              m%vfree(2, nn), m%driven(2, nn), m%movable(m%n), m%el_kind(ne), m%el_mat(ne), m%el_bulk(ne), &
+              m%el_first(ne + 1), &
               m%el_nodes(nel_nodes), m%el_gp(ne + 1), m%gp(gp_size, ng), m%gp_begin(gp_size, ng), &
               m%nonlinear(m%n), m%lumped(m%n), m%mdiag(2, nn), m%fext(2, nn), m%fint_begin(2, nn), &
               m%fint(2, nn), m%res(2, nn), m%imp(2, nn), m%fsupport(2, nn), m%finert(2, nn), m%tmp(2, nn))
@@ -159,7 +163,7 @@ contains
     m%gp = 0.0_wp
     m%fext = 0.0_wp; m%fint = 0.0_wp; m%res = 0.0_wp; m%imp = 0.0_wp; m%fsupport = 0.0_wp; m%finert = 0.0_wp
     ! Bulk laws of the materials meshes use (others may be RIGID).
-    allocate (m%mats(size(deck%materials)), used(size(deck%materials)))
+    allocate (m%mats(2 * size(deck%materials)), used(2 * size(deck%materials)))
     used = .false.
     b = 0
     ne = 0
@@ -184,12 +188,21 @@ contains
             end do
             if (imat == 0) call input_error(el%src%file, el%src%line, 37, "material '"//el%behav// &
               "' is not defined in BULK_BEHAV.DAT")
-            if (.not. used(imat)) m%mats(imat) = bulk_from_material(deck%materials(imat))
-            used(imat) = .true.
             m%el_mat(ne) = imat
             k = model_index(deck%models, el%model)
             if (deck%models(k)%mass_storage == 'coher') m%lumped(b) = .false.
-            if (m%mats(imat)%law == bulk_j2) m%nonlinear(b) = .true.
+            ! A material's law under a finite-strain (neoh_) model is kept apart.
+            nlaw = imat
+            if (deck%models(k)%material == 'neoh_') then
+              nlaw = imat + size(deck%materials)
+              if (m%plane /= plane_strain) call input_error(deck%models(k)%src%file, deck%models(k)%src%line, 2, &
+                "model '"//trim(deck%models(k)%nickname)//"' (mater neoh_, finite strain) runs in plane strain "// &
+                'only, as in LMGC90; the run control asks for plane stress')
+            end if
+            if (.not. used(nlaw)) m%mats(nlaw) = bulk_from_material(deck%materials(imat), deck%models(k)%material)
+            used(nlaw) = .true.
+            m%el_bulk(ne) = nlaw
+            if (m%mats(nlaw)%law /= bulk_elastic) m%nonlinear(b) = .true.
             if (size(el%nodes) /= el_nnodes(m%el_kind(ne))) call input_error(el%src%file, el%src%line, 16, &
               'element has the wrong number of nodes for its type')
             do j = 1, size(el%nodes)
@@ -313,7 +326,7 @@ contains
         e = m%elem_first(r%body) - 1 + r%element
         if (r%element < 1 .or. e >= m%elem_first(r%body + 1)) call input_error(r%src%file, r%src%line, 9, &
           'GPV.INI: element number out of range for this MAILx body')
-        if (m%mats(m%el_mat(e))%law /= bulk_j2 .or. size(r%values, 1) < 14) cycle
+        if (m%mats(m%el_bulk(e))%law /= bulk_j2 .or. size(r%values, 1) < 14) cycle
         ng = m%el_gp(e + 1) - m%el_gp(e)
         do g = 1, ng
           v = r%values(9:14, min(g, size(r%values, 2)))
@@ -435,7 +448,7 @@ contains
       nn = el_nnodes(m%el_kind(e))
       call element_data(m, e, b, u, xe, ue, dofs)
       allocate (ke(2 * nn, 2 * nn), fi(2 * nn), me(2 * nn, 2 * nn))
-      call el_response(m%el_kind(e), xe, ue, m%mats(m%el_mat(e)), m%plane, &
+      call el_response(m%el_kind(e), xe, ue, m%mats(m%el_bulk(e)), m%plane, &
                        m%gp_begin(:, m%el_gp(e):m%el_gp(e + 1) - 1), m%gp(:, m%el_gp(e):m%el_gp(e + 1) - 1), &
                        fi, ke, .true., eel, wpl)
       m%eel(b) = m%eel(b) + eel
@@ -446,7 +459,7 @@ contains
       end do
       me = 0.0_wp
       if (with_mass) then
-        call el_mass(m%el_kind(e), xe, m%mats(m%el_mat(e))%density, m%lumped(b), me)
+        call el_mass(m%el_kind(e), xe, m%mats(m%el_bulk(e))%density, m%lumped(b), me)
         do i = 1, nn
           k = m%el_nodes(m%el_first(e) + i - 1)
           m%mdiag(1, k) = m%mdiag(1, k) + sum(me(2 * i - 1, :))
@@ -1036,7 +1049,7 @@ contains
       do ie = m%elem_first(b), m%elem_first(b + 1) - 1
         call element_data(m, ie, b, m%x, xe, ue, dofs)
         allocate (fi(size(ue)), ke(size(ue), size(ue)))
-        call el_response(m%el_kind(ie), xe, ue, m%mats(m%el_mat(ie)), m%plane, &
+        call el_response(m%el_kind(ie), xe, ue, m%mats(m%el_bulk(ie)), m%plane, &
                          m%gp_begin(:, m%el_gp(ie):m%el_gp(ie + 1) - 1), gp(:, m%el_gp(ie):m%el_gp(ie + 1) - 1), &
                          fi, ke, .false., eel, wpl)
         deallocate (fi, ke)

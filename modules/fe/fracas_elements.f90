@@ -30,7 +30,7 @@
 module fracas_elements
   use fracas_kinds, only: wp
   use fracas_bulk, only: bulk_t, bulk_update, bulk_plastic_work, gp_size, gp_stress, gp_strain, &
-                         gp_plastic_strain, gp_p, plane_strain
+                         gp_plastic_strain, gp_p, plane_strain, bulk_neohookean, bulk_neohooke
   implicit none
   private
   public :: el_t3, el_q4, el_t6, el_q8, el_q4p0, el_max_nodes, el_max_dofs, el_max_gauss, &
@@ -465,6 +465,15 @@ contains
   !> strain at each Gauss point is replaced by its element mean (3D trace,
   !> eps_zz then non-zero at a Gauss point); in plane stress it is a Q4.
   !> For an elastic material fi = ke u.
+  !> A neo-Hookean material (finite strain) is integrated in the total
+  !> Lagrangian way, as LMGC90 does with its MatLib models: at each Gauss point
+  !> F = I + du/dX (reference derivatives), fi = integral of G' P, ke = integral
+  !> of G' (dP/dF) G (G: u -> du/dX, rows F_xx, F_xy, F_yx, F_yy), over the
+  !> reference element; el_q4p0 is then a plain Q4 (LMGC90's MatLib path uses
+  !> the full gradient on every Gauss point), plane strain only. The states get
+  !> the Cauchy stress and the Green-Lagrange strain (xx, yy, 2 xy, zz);
+  !> elastic_energy is the integral of W. An element turned inside out (J <= 0
+  !> at a Gauss point) gives fi = huge: the caller's Newton loop fails.
   pure subroutine el_response(kind, x, u, mat, plane, gp_begin, gp_end, fi, ke, want_tangent, &
                               elastic_energy, plastic_work)
     integer, intent(in) :: kind
@@ -485,6 +494,11 @@ contains
 
     nn = el_nnodes(kind)
     nd = 2 * nn
+    if (mat%law == bulk_neohookean) then
+      call response_finite(kind, x, u, mat, gp_end, fi, ke, want_tangent, elastic_energy)
+      plastic_work = 0.0_wp
+      return
+    end if
     bbar = kind == el_q4p0 .and. plane == plane_strain
     nrow = merge(4, 3, bbar)
     call quadrature(kind, rule_stiffness, ng, xi, w)
@@ -555,4 +569,58 @@ contains
       plastic_work = plastic_work + wdet(g) * bulk_plastic_work(mat, gp_begin(gp_p, g), gp_end(gp_p, g))
     end do
   end subroutine el_response
+
+  !> Total Lagrangian response of a neo-Hookean element (see el_response).
+  pure subroutine response_finite(kind, x, u, mat, gp_end, fi, ke, want_tangent, energy)
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: x(:, :), u(:)
+    type(bulk_t), intent(in) :: mat
+    real(wp), intent(out) :: gp_end(:, :), fi(:), ke(:, :)
+    logical, intent(in) :: want_tangent
+    real(wp), intent(out) :: energy
+    real(wp) :: xi(2, el_max_gauss), w(el_max_gauss), n(el_max_nodes), dn(2, el_max_nodes)
+    real(wp) :: dnx(2, el_max_nodes), det, gmat(4, el_max_dofs), ag(4, el_max_dofs)
+    real(wp) :: f(4), p(4), a(4, 4), wd, sig(4), green(4)
+    integer :: ng, g, nn, nd, c, i, j
+    nn = el_nnodes(kind)
+    nd = 2 * nn
+    call quadrature(kind, rule_stiffness, ng, xi, w)
+    fi(1:nd) = 0.0_wp
+    if (want_tangent) then
+      ke(1:nd, 1:nd) = 0.0_wp
+    else
+      ke = 0.0_wp
+    end if
+    energy = 0.0_wp
+    do g = 1, ng
+      call el_shape(kind, xi(:, g), n, dn)
+      call physical_derivatives(nn, x, dn, dnx, det)
+      ! G: row 2(i-1)+J of du_i/dX_J; node c's dof i is column 2(c-1)+i
+      gmat(:, 1:nd) = 0.0_wp
+      do c = 1, nn
+        gmat(1:2, 2 * c - 1) = dnx(:, c)
+        gmat(3:4, 2 * c) = dnx(:, c)
+      end do
+      f = [1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp] + matmul(gmat(:, 1:nd), u(1:nd))
+      if (f(1) * f(4) - f(2) * f(3) <= 0.0_wp) then
+        fi(1:nd) = huge(1.0_wp)
+        gp_end(:, g:ng) = 0.0_wp
+        return
+      end if
+      call bulk_neohooke(mat, f, p, a, wd, sig, green)
+      gp_end(:, g) = 0.0_wp
+      gp_end(gp_stress:gp_stress + 3, g) = sig
+      gp_end(gp_strain:gp_strain + 3, g) = green
+      fi(1:nd) = fi(1:nd) + (w(g) * det) * matmul(p, gmat(:, 1:nd))
+      energy = energy + w(g) * det * wd
+      if (want_tangent) then
+        ag(:, 1:nd) = matmul(a, gmat(:, 1:nd))
+        do j = 1, nd
+          do i = 1, nd
+            ke(i, j) = ke(i, j) + (w(g) * det) * dot_product(gmat(:, i), ag(:, j))
+          end do
+        end do
+      end if
+    end do
+  end subroutine response_finite
 end module fracas_elements

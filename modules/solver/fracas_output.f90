@@ -954,7 +954,7 @@ contains
           r%kind = el_name(ms%el_kind(e))
           ng = ms%el_gp(e + 1) - ms%el_gp(e)
           np = el_ngauss_gpv(ms%el_kind(e))
-          allocate (r%values(merge(14, 8, ms%mats(ms%el_mat(e))%law == bulk_j2), np))
+          allocate (r%values(merge(14, 8, ms%mats(ms%el_bulk(e))%law == bulk_j2), np))
           do g = 1, np
             g0 = ms%el_gp(e) + min(g, ng) - 1
             r%values(1:8, g) = gp(gp_sxx:gp_ezz, g0)
