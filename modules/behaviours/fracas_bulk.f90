@@ -15,8 +15,9 @@
 !> API
 !>   type(bulk_t): law (bulk_elastic | bulk_j2 | bulk_neohookean), density,
 !>                 young, poisson, yield0, hardening
-!>   bulk_from_material(m [, mater])               -> bulk_t from a BULK_BEHAV.DAT record
-!>                                                    (mater 'neoh_': the neo-Hookean law)
+!>   bulk_from_material(m [, model])               -> bulk_t from a BULK_BEHAV.DAT record
+!>                                                    and its model's options (finite strain:
+!>                                                    neo-Hookean, or J2 of LMGC90's Q4P0x)
 !>   bulk_update(mat, plane, eps, state_begin, state_end, dtan)
 !>   bulk_neohooke(mat, f, p, a, w [, cauchy, green])  finite strain, plane strain
 !>   bulk_yield_stress(mat, p), bulk_plastic_work(mat, p_begin, p_end)
@@ -27,18 +28,23 @@
 !> reals: stress(4), total strain(4), plastic strain(4, gamma for xy), p.
 module fracas_bulk
   use fracas_kinds, only: wp
-  use fracas_deck, only: material_input_t
+  use fracas_deck, only: material_input_t, model_input_t, model_finite_strain
   use fracas_errors, only: input_error
   implicit none
   private
-  public :: bulk_t, bulk_elastic, bulk_j2, bulk_neohookean, bulk_neohooke, plane_strain, plane_stress, bulk_from_material, &
+  public :: bulk_t, bulk_elastic, bulk_j2, bulk_neohookean, bulk_j2_finite, bulk_neohooke, plane_strain, plane_stress, plane_axisym, plane_names, &
+            bulk_from_material, &
             bulk_update, bulk_yield_stress, bulk_plastic_work, bulk_elastic_tangent, &
             gp_size, gp_stress, gp_strain, gp_plastic_strain, gp_p, &
             gp_sxx, gp_syy, gp_sxy, gp_szz, gp_exx, gp_eyy, gp_gxy, gp_ezz, &
             gp_pxx, gp_pyy, gp_pgxy, gp_pzz
 
-  integer, parameter :: bulk_elastic = 1, bulk_j2 = 2, bulk_neohookean = 3
-  integer, parameter :: plane_strain = 1, plane_stress = 2
+  integer, parameter :: bulk_elastic = 1, bulk_j2 = 2, bulk_neohookean = 3, bulk_j2_finite = 4
+  !> plane_axisym: x is the radius r, y the axis; quantities per unit angle x 2 pi
+  !> (LMGC90's axisymmetry), the hoop component in the zz slot.
+  integer, parameter :: plane_strain = 1, plane_stress = 2, plane_axisym = 3
+  !> Their run-control words (COMMAND.DAT 'plane').
+  character(len=6), parameter :: plane_names(3) = ['strain', 'stress', 'axisym']
 
   !> Gauss-point state: first index of each block and every component.
   integer, parameter :: gp_size = 13
@@ -64,19 +70,20 @@ module fracas_bulk
 contains
 
   !> The bulk law of a BULK_BEHAV.DAT record: ELAS -> elastic, ELAS_PLAS -> J2;
-  !> with the model's mater 'neoh_', ELAS -> neo-Hookean (finite strain).
-  function bulk_from_material(m, mater) result(mat)
+  !> under a finite-strain model (model_finite_strain) ELAS -> neo-Hookean and
+  !> ELAS_PLAS -> finite-strain J2.
+  function bulk_from_material(m, model) result(mat)
     type(material_input_t), intent(in) :: m
-    character(len=*), intent(in), optional :: mater
+    type(model_input_t), intent(in), optional :: model
     type(bulk_t) :: mat
+    logical :: finite
+    finite = .false.
+    if (present(model)) finite = model_finite_strain(model)
     select case (trim(m%law))
     case ('ELAS')
-      mat%law = bulk_elastic
-      if (present(mater)) then
-        if (mater == 'neoh_') mat%law = bulk_neohookean
-      end if
+      mat%law = merge(bulk_neohookean, bulk_elastic, finite)
     case ('ELAS_PLAS')
-      mat%law = bulk_j2
+      mat%law = merge(bulk_j2_finite, bulk_j2, finite)
       if (m%yield0 <= 0.0_wp) call input_error(m%src%file, m%src%line, 0, &
                                                'ELAS_PLAS '//trim(m%nickname)//': SIG0 must be > 0')
       if (m%hardening < 0.0_wp) call input_error(m%src%file, m%src%line, 0, &

@@ -20,10 +20,11 @@ module fracas_mailx
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, input_error, status_t, raise, failed
   use fracas_strings, only: itoa, rtoa
-  use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t
+  use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t, model_finite_strain
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, el_geometry_ok, el_area
-  use fracas_bulk, only: bulk_t, bulk_j2, bulk_elastic, plane_strain, plane_stress, gp_size, bulk_from_material, &
+  use fracas_bulk, only: bulk_t, bulk_j2, bulk_j2_finite, bulk_elastic, plane_strain, &
+                         plane_stress, plane_axisym, gp_size, bulk_from_material, &
                          gp_pxx, gp_pzz, gp_p
   use fracas_sparse, only: sparse_t, sparse_from_triplets, sparse_matvec
   use fracas_linear_solver, only: factor_t, factor_build, factor_update, factor_solve, factor_free, &
@@ -126,7 +127,14 @@ contains
     m%theta = theta
     m%time = deck%dof_time
     m%gravity = deck%gravity(1:2)
-    m%plane = merge(plane_stress, plane_strain, deck%run%plane == 'stress')
+    select case (deck%run%plane)
+    case ('stress')
+      m%plane = plane_stress
+    case ('axisym')
+      m%plane = plane_axisym
+    case default
+      m%plane = plane_strain
+    end select
     m%method = trim(deck%run%linear_solver)
     ! LMGC90 starts a driven node of a mesh from its previous velocity (lmgc90):
     ! its examples' driven nodes move theta h v in the first step (4T3 exploded).
@@ -191,15 +199,22 @@ contains
             m%el_mat(ne) = imat
             k = model_index(deck%models, el%model)
             if (deck%models(k)%mass_storage == 'coher') m%lumped(b) = .false.
-            ! A material's law under a finite-strain (neoh_) model is kept apart.
+            ! A material's law under a finite-strain model is kept apart.
             nlaw = imat
-            if (deck%models(k)%material == 'neoh_') then
+            if (model_finite_strain(deck%models(k))) then
               nlaw = imat + size(deck%materials)
-              if (m%plane /= plane_strain) call input_error(deck%models(k)%src%file, deck%models(k)%src%line, 2, &
-                "model '"//trim(deck%models(k)%nickname)//"' (mater neoh_, finite strain) runs in plane strain "// &
-                'only, as in LMGC90; the run control asks for plane stress')
+              if (m%plane == plane_stress) call input_error(deck%models(k)%src%file, deck%models(k)%src%line, 2, &
+                "model '"//trim(deck%models(k)%nickname)//"' (mater "//deck%models(k)%material// &
+                ', finite strain) runs in plane strain only, as in LMGC90; the run control asks for plane stress')
             end if
-            if (.not. used(nlaw)) m%mats(nlaw) = bulk_from_material(deck%materials(imat), deck%models(k)%material)
+            if (.not. used(nlaw)) m%mats(nlaw) = bulk_from_material(deck%materials(imat), deck%models(k))
+            ! Axisymmetry: LMGC90's finite-strain J2 (Q4P0x) only so far, and no mesh contactors.
+            if (m%plane == plane_axisym .and. m%mats(nlaw)%law /= bulk_j2_finite) call input_error(el%src%file, &
+              el%src%line, 23, "run control 'plane axisym': Fracas runs axisymmetric meshes with LMGC90's "// &
+              "finite-strain J2 model only (kine_ large, mater J2iso, Q4P0x); model '"//trim(el%model)//"' is not")
+            if (m%plane == plane_axisym .and. size(bd%tactors) > 0) call input_error(bd%src%file, bd%src%line, 0, &
+              "run control 'plane axisym': axisymmetric meshes with contactors are not supported (contacts are "// &
+              'planar)')
             used(nlaw) = .true.
             m%el_bulk(ne) = nlaw
             if (m%mats(nlaw)%law /= bulk_elastic) m%nonlinear(b) = .true.
@@ -313,11 +328,12 @@ contains
   !> Plastic strain and cumulative plastic strain of J2 elements from GPV.INI:
   !> the internals line Fracas writes (plastic strain xx, yy, γxy, zz, p, von
   !> Mises), or LMGC90's Q4P0x line (Cp⁻¹ 11, 22, 12, 33, p, von Mises), whose
-  !> finite-strain Cp⁻¹ ≈ I − 2 ε_p is taken to first order.
+  !> finite-strain Cp⁻¹ ≈ I − 2 ε_p is taken to first order by small-strain J2;
+  !> finite-strain J2 keeps Cp⁻¹ (as Cp⁻¹ − I).
   subroutine restore_plastic_state(m, deck)
     type(mailx_t), intent(inout) :: m
     type(deck_t), intent(in) :: deck
-    integer :: k, e, g, ng
+    integer :: k, e, g, ng, law
     real(wp) :: v(6)
     do k = 1, size(deck%gpv_ini)
       associate (r => deck%gpv_ini(k))
@@ -326,12 +342,17 @@ contains
         e = m%elem_first(r%body) - 1 + r%element
         if (r%element < 1 .or. e >= m%elem_first(r%body + 1)) call input_error(r%src%file, r%src%line, 9, &
           'GPV.INI: element number out of range for this MAILx body')
-        if (m%mats(m%el_bulk(e))%law /= bulk_j2 .or. size(r%values, 1) < 14) cycle
+        law = m%mats(m%el_bulk(e))%law
+        if ((law /= bulk_j2 .and. law /= bulk_j2_finite) .or. size(r%values, 1) < 14) cycle
         ng = m%el_gp(e + 1) - m%el_gp(e)
         do g = 1, ng
           v = r%values(9:14, min(g, size(r%values, 2)))
-          if (abs(v(1) - 1.0_wp) < 0.5_wp .and. abs(v(2) - 1.0_wp) < 0.5_wp) &   ! LMGC90's Cp^-1
+          if (law == bulk_j2_finite) then
+            ! Cp^-1 itself, kept as Cp^-1 - I (a zero state is the virgin one)
+            v(1:4) = v(1:4) - [1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp]
+          else if (abs(v(1) - 1.0_wp) < 0.5_wp .and. abs(v(2) - 1.0_wp) < 0.5_wp) then   ! LMGC90's Cp^-1
             v(1:4) = [0.5_wp * (1.0_wp - v(1)), 0.5_wp * (1.0_wp - v(2)), -v(3), 0.5_wp * (1.0_wp - v(4))]
+          end if
           m%gp_begin(gp_pxx:gp_pzz, m%el_gp(e) + g - 1) = v(1:4)
           m%gp_begin(gp_p, m%el_gp(e) + g - 1) = v(5)
         end do
@@ -459,7 +480,7 @@ contains
       end do
       me = 0.0_wp
       if (with_mass) then
-        call el_mass(m%el_kind(e), xe, m%mats(m%el_bulk(e))%density, m%lumped(b), me)
+        call el_mass(m%el_kind(e), xe, m%mats(m%el_bulk(e))%density, m%lumped(b), me, m%plane == plane_axisym)
         do i = 1, nn
           k = m%el_nodes(m%el_first(e) + i - 1)
           m%mdiag(1, k) = m%mdiag(1, k) + sum(me(2 * i - 1, :))

@@ -12,7 +12,7 @@
 !> writes for rigid bodies is read and kept; no element may use it.
 module fracas_read_models
   use fracas_kinds, only: wp
-  use fracas_deck, only: model_input_t, body_input_t, material_input_t
+  use fracas_deck, only: model_input_t, body_input_t, material_input_t, model_finite_strain
   use fracas_errors, only: input_error, warn
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, is_blank, &
                                 keyword_of, is_data, get_word, itoa
@@ -137,7 +137,8 @@ contains
                        "': 'mater neoh_' (neo-Hookean, finite strain) needs 'kine_ large' and 'form_ TotaL' "// &
                        '(LMGC90 runs it so only)')
     ! Read so that LMGC90's decks run, but not what is computed: say so.
-    if (m%kinematic == 'large' .and. m%material /= 'neoh_') call warn(m%src%file//':'//itoa(seen(1))//": model '"//trim(m%nickname)// &
+    if (m%kinematic == 'large' .and. .not. model_finite_strain(m)) call warn(m%src%file//':'//itoa(seen(1))// &
+      ": model '"//trim(m%nickname)// &
       "' asks for large kinematics (kine_ large, form_ "//trim(m%formulation)//"): Fracas runs it with small " &
       //'strain (linear strain about the reference configuration), which agrees with LMGC90 only while '// &
       'rotations and strains stay small (doc/mesh_mechanics.md)')

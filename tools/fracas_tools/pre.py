@@ -615,7 +615,7 @@ COMMAND_KEYWORDS = {
     "output_vtk_precision": ("single", "double"),
     "cohesive_damage": ("implicit", "explicit", "lmgc90"),
     # meshed bodies
-    "plane": ("strain", "stress"),
+    "plane": ("strain", "stress", "axisym"),
     "newton_tolerance": float,
     "newton_max_iterations": int,
     "linear_solver": ("auto", "dense", "cholmod"),
