@@ -526,13 +526,7 @@ contains
     end do
     if (bbar) bvol_mean(1:nd) = bvol_mean(1:nd) / sum(wdet(1:ng))
 
-    fi(1:nd) = 0.0_wp
-    ! Without a tangent the caller may pass any (small) array.
-    if (want_tangent) then
-      ke(1:nd, 1:nd) = 0.0_wp
-    else
-      ke = 0.0_wp
-    end if
+    call zero_response(nd, want_tangent, fi, ke)
     elastic_energy = 0.0_wp
     plastic_work = 0.0_wp
     do g = 1, ng
@@ -580,6 +574,21 @@ contains
     end do
   end subroutine el_response
 
+  !> fi(1:nd) = 0 and the tangent ke(1:nd, 1:nd) = 0; without a tangent the caller
+  !> may pass any (small) ke, set to 0 whole.
+  pure subroutine zero_response(nd, want_tangent, fi, ke)
+    integer, intent(in) :: nd
+    logical, intent(in) :: want_tangent
+    real(wp), intent(out) :: fi(:)
+    real(wp), intent(inout) :: ke(:, :)
+    fi(1:nd) = 0.0_wp
+    if (want_tangent) then
+      ke(1:nd, 1:nd) = 0.0_wp
+    else
+      ke = 0.0_wp
+    end if
+  end subroutine zero_response
+
   !> Total Lagrangian response of a neo-Hookean element (see el_response).
   pure subroutine response_finite(kind, x, u, mat, gp_end, fi, ke, want_tangent, energy)
     integer, intent(in) :: kind
@@ -595,12 +604,7 @@ contains
     nn = el_nnodes(kind)
     nd = 2 * nn
     call quadrature(kind, rule_stiffness, ng, xi, w)
-    fi(1:nd) = 0.0_wp
-    if (want_tangent) then
-      ke(1:nd, 1:nd) = 0.0_wp
-    else
-      ke = 0.0_wp
-    end if
+    call zero_response(nd, want_tangent, fi, ke)
     energy = 0.0_wp
     do g = 1, ng
       call el_shape(kind, xi(:, g), n, dn)
@@ -660,12 +664,8 @@ contains
     integer :: nd, j
     nd = 2 * el_nnodes(kind)
     call j2_finite_forces(kind, x, u, mat, axisym, gp_begin, gp_end, fi, energy, plastic_work)
-    if (want_tangent) then
-      ke(1:nd, 1:nd) = 0.0_wp
-    else
-      ke = 0.0_wp
-      return
-    end if
+    call zero_response(nd, want_tangent, fp, ke)
+    if (.not. want_tangent) return
     ! step: 1e-7 of the element's size, a displacement well resolved in double
     h = 1.0e-7_wp * sqrt(max(el_area(kind, x), tiny(1.0_wp)))
     up(1:nd) = u(1:nd)

@@ -15,7 +15,7 @@ if str(TOOLS) not in sys.path:
     sys.path.insert(0, str(TOOLS))
 from fracas_tools.pre import Case  # noqa: E402
 
-__all__ = ["Case", "rect_grid", "node_id", "quads", "triangles", "one_based"]
+__all__ = ["Case", "rect_grid", "node_id", "quads", "triangles", "one_based", "distorted_grid"]
 
 
 def rect_grid(nx, ny, lx, ly, x0=0.0, y0=0.0):
@@ -23,6 +23,19 @@ def rect_grid(nx, ny, lx, ly, x0=0.0, y0=0.0):
     xs = np.linspace(x0, x0 + lx, nx + 1)
     ys = np.linspace(y0, y0 + ly, ny + 1)
     return np.array([[x, y] for y in ys for x in xs])
+
+
+def distorted_grid(n, size, seed, amplitude):
+    """rect_grid(n, n, size, size) with its interior nodes moved at random (seeded) by up
+    to amplitude x the cell size, coordinates rounded to 1e-4 (the deck's 8-digit fields
+    then hold them exactly)."""
+    x = rect_grid(n, n, size, size)
+    rng = np.random.default_rng(seed)
+    h = size / n
+    for j in range(1, n):
+        for i in range(1, n):
+            x[node_id(i, j, n)] += rng.uniform(-amplitude, amplitude, 2) * h
+    return np.round(x, 4)
 
 
 def node_id(i, j, nx):

@@ -30,7 +30,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from meshdeck import Case, node_id, one_based, quads, rect_grid, triangles  # noqa: E402
+from meshdeck import Case, distorted_grid, one_based, quads, rect_grid, triangles  # noqa: E402
 from valmesh import Checker, args, run_fracas  # noqa: E402
 
 E, NU = 1.0e7, 0.3
@@ -38,16 +38,6 @@ MU = E / (2 * (1 + NU))
 LAM = E * NU / ((1 + NU) * (1 - 2 * NU))
 N = 4
 STRETCH, STEPS, H = 1.6, 8, 1.0
-
-
-def distorted_grid(seed, size=1.0):
-    x = rect_grid(N, N, size, size)
-    rng = np.random.default_rng(seed)
-    h = size / N
-    for j in range(1, N):
-        for i in range(1, N):
-            x[node_id(i, j, N)] += rng.uniform(-0.25, 0.25, 2) * h
-    return np.round(x, 4)
 
 
 def lateral(s):
@@ -61,7 +51,7 @@ def cauchy(t, s):
 
 
 def build_stretch(case_dir, kind, kinematic="large"):
-    x = distorted_grid(seed=5)
+    x = distorted_grid(N, 1.0, seed=5, amplitude=0.25)
     elements = quads(N, N) if kind == "Q4" else triangles(N, N)
     case = Case(gravity=(0.0, 0.0))
     case.add_material("RUBBR", 0.0, "ELAS", young=E, poisson=NU)
