@@ -30,7 +30,8 @@ module fracas_output
   use fracas_elements, only: el_ngauss_gpv, el_name, el_vtk_type, el_vtk_order
   use fracas_cracks, only: crack_paths_t, cracks_paths, cracks_lengths, cracks_fragments, cracks_edge_beta, &
                            fragments_t, cracks_fragment_stats
-  use fracas_bulk, only: bulk_j2, bulk_j2_finite, plane_names, gp_sxx, gp_szz, gp_ezz, gp_pxx, gp_pzz, gp_p, plane_stress
+  use fracas_bulk, only: bulk_j2, bulk_j2_finite, plane_names, gp_sxx, gp_szz, gp_exx, gp_eyy, gp_gxy, gp_ezz, &
+                         gp_pxx, gp_pzz, gp_p
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close, results_flush, &
                                results_group, results_last_snapshot, results_rename
@@ -942,7 +943,7 @@ contains
     type(gpv_record_t), allocatable :: recs(:)
     real(wp), allocatable :: gp(:, :)
     integer :: b, e, g, ng, np, g0, law
-    real(wp) :: cp_shift(4)
+    real(wp) :: cp_shift(4), jac
     associate (ms => sc%meshes)
     allocate (gp(size(ms%gp, 1), size(ms%gp, 2)))
     call mailx_gauss_values(ms, gp)
@@ -963,8 +964,13 @@ contains
           do g = 1, np
             g0 = ms%el_gp(e) + min(g, ng) - 1
             r%values(1:8, g) = gp(gp_sxx:gp_ezz, g0)
+            ! finite-strain J2: LMGC90 prints the Kirchhoff von Mises stress, J times
+            ! the Cauchy one (J from the Green-Lagrange strain: J^2 = det C)
+            jac = 1.0_wp
+            if (law == bulk_j2_finite) jac = sqrt(((1.0_wp + 2.0_wp * gp(gp_exx, g0)) * &
+              (1.0_wp + 2.0_wp * gp(gp_eyy, g0)) - gp(gp_gxy, g0)**2) * (1.0_wp + 2.0_wp * gp(gp_ezz, g0)))
             if (size(r%values, 1) == 14) r%values(9:14, g) = [gp(gp_pxx:gp_pzz, g0) + cp_shift, gp(gp_p, g0), &
-                                                              von_mises(gp(gp_sxx:gp_szz, g0))]
+                                                              jac * von_mises(gp(gp_sxx:gp_szz, g0))]
           end do
         end associate
       end do

@@ -6,7 +6,7 @@ and compare Fracas's last step with LMGC90's DOF.LAST / Vloc_Rloc.LAST.
     lmgc90_example.py run CASE_DIR OUT [--set KEY=VALUE ...] [--deck DIR]
     lmgc90_example.py compare OUT CASE_DIR [--pairs-differ N] [--count-differ N] [--sum-rn REL]
                                          [--max-rn V] [--max-x V] [--mean-x REL] [--mean-y REL]
-                                         [--node B:N:DOF] [--gpv-stress REL] [--gpv-p ABS]
+                                         [--node B:N:DOF] [--gpv-stress REL] [--gpv-p ABS] [--gpv-vm REL]
     lmgc90_example.py points CASE_DIR OUT [--vmax V]
     lmgc90_example.py h5 OUT NAME=V1,V2,... [--rtol R] [--atol A]
 
@@ -16,7 +16,8 @@ reaction over the common contacts (or the largest one of ours, where the sum is 
 the mean node displacement of meshed bodies (each
 component relative to LMGC90's), and the meshes' Gauss-point values (GPV.LAST: the
 largest stress difference relative to the largest stress, the largest difference of the
-cumulative plastic strain p, 5th internal). `points` checks a mesh
+cumulative plastic strain p, 5th internal; the largest difference of the von Mises
+stress, 6th internal, relative to its largest). `points` checks a mesh
 deck's CLALp contacts: one per candidate point (LMGC90's rule), every point glued, no
 node faster than V (a scene at rest stays at rest). `h5` compares the first values
 of datasets of OUT/OUTBOX/fracas.h5 (e.g. bodies/mass) with closed-form values.
@@ -126,7 +127,7 @@ def cmd_compare(a):
         what = f"MAILx {body} node {node}" if node else f"RBDY2 {body}"
         ok &= report(f"X({dof}) of {what}", err <= unit,
                      f"{xo} ours, {xr} LMGC90's: {err:.2e} apart (one printed unit: {unit:.0e})")
-    if a.gpv_stress is not None or a.gpv_p is not None:
+    if a.gpv_stress is not None or a.gpv_p is not None or a.gpv_vm is not None:
         go, gr = gauss_values(last(ours_box, "GPV")), gauss_values(ref / "GPV.LAST")
         same = go.keys() == gr.keys() and all(len(go[k]) == len(gr[k]) for k in gr)
         ok &= report("Gauss points", same, f"{sum(len(v) for v in go.values())} lines ours, "
@@ -145,6 +146,12 @@ def cmd_compare(a):
                 ok &= report("cumulative plastic strain p", d <= a.gpv_p, f"largest difference {d:.2e} "
                              f"(largest p {pr.max():.4f}, mean {po.mean():.6f} ours, {pr.mean():.6f} LMGC90's; "
                              f"tolerance {a.gpv_p:g})")
+            if a.gpv_vm is not None:
+                vo = np.array([ln[5] for v in go.values() for ln in v[2::3]])
+                vr = np.array([ln[5] for v in gr.values() for ln in v[2::3]])
+                rel = np.abs(vo - vr).max() / max(vr.max(), 1e-300)
+                ok &= report("von Mises stress", rel <= a.gpv_vm, f"largest difference {rel:.2e} of the largest "
+                             f"{vr.max():.4e} (tolerance {a.gpv_vm:g})")
     return 0 if ok else 1
 
 
@@ -227,6 +234,7 @@ def main(argv=None):
                    help="X(DOF) of this MAILx node (NODE 0: of rigid body BODY), to the printed digit")
     c.add_argument("--gpv-stress", type=float, help="largest Gauss-point stress difference / largest stress")
     c.add_argument("--gpv-p", type=float, help="largest difference of p (cumulative plastic strain)")
+    c.add_argument("--gpv-vm", type=float, help="largest von Mises difference / largest von Mises")
     q = sub.add_parser("points")
     q.add_argument("case"); q.add_argument("out")
     q.add_argument("--vmax", type=float, default=1e-9)
