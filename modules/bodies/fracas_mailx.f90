@@ -437,11 +437,12 @@ contains
   !> Element loop of body b at displacements u: stiffness or tangent (and with
   !> with_mass the mass), internal forces m%fint and Gauss-point states m%gp
   !> (from m%gp_begin) of the body.
-  subroutine assemble_body(m, b, u, with_mass)
+  subroutine assemble_body(m, b, u, with_mass, status)
     type(mailx_t), intent(inout) :: m
     integer, intent(in) :: b
     real(wp), intent(in) :: u(:, :)
     logical, intent(in) :: with_mass
+    type(status_t), intent(inout), optional :: status   !< an element turned inside out
     integer :: e, nn, nd, i, j, k, cnt, base
     real(wp), allocatable :: me(:, :), ke(:, :), fi(:), xe(:, :), ue(:)
     integer, allocatable :: dofs(:)
@@ -472,6 +473,12 @@ contains
       call el_response(m%el_kind(e), xe, ue, m%mats(m%el_bulk(e)), m%plane, &
                        m%gp_begin(:, m%el_gp(e):m%el_gp(e + 1) - 1), m%gp(:, m%el_gp(e):m%el_gp(e + 1) - 1), &
                        fi, ke, .true., eel, wpl)
+      ! finite-strain elements say J <= 0 at a Gauss point with fi = huge
+      if (any(fi >= huge(1.0_wp))) then
+        call raise(status, 'MAILx body '//itoa(b)//': element '//itoa(e - m%elem_first(b) + 1)// &
+                   ' turned inside out (det F <= 0 at a Gauss point): the step is too large for this deformation')
+        return
+      end if
       m%eel(b) = m%eel(b) + eel
       m%wpl(b) = m%wpl(b) + wpl
       do i = 1, nn
@@ -543,7 +550,8 @@ contains
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
       if (m%nonlinear(b)) then
-        call assemble_body(m, b, u, with_mass=.false.)
+        call assemble_body(m, b, u, with_mass=.false., status=status)
+        if (failed(status)) return
         call factorize_body(m, b, status=status)
         if (failed(status)) return
       else

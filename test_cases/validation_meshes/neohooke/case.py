@@ -22,7 +22,13 @@ the whole solver, against closed forms.
    (kine_ small) is printed for comparison: the velocity field omega x r has no linear
    strain, so nothing holds the nodes on their circles; they run off along their
    tangents (0.79 m from the rigid rotation at the quarter turn, the block 1.86 times
-   its size, stress-free)."""
+   its size, stress-free).
+3. An element turned inside out: the stretch deck compressed through zero height in one
+   step (s = -0.2): fracas stops with exit status 1 and names the body and the element
+   ("turned inside out"), not with a floating-point trap or a factorization message.
+   (Before the check: "iteration matrix ... not positive definite", and a trap in the
+   debug build.)"""
+import subprocess
 import sys
 from pathlib import Path
 
@@ -50,7 +56,7 @@ def cauchy(t, s):
     return np.array([0.0, (MU * s * s + LAM * np.log(j) - MU) / j, 0.0, LAM * np.log(j) / j])
 
 
-def build_stretch(case_dir, kind, kinematic="large"):
+def build_stretch(case_dir, kind, kinematic="large", stretch=STRETCH, steps=STEPS):
     x = distorted_grid(N, 1.0, seed=5, amplitude=0.25)
     elements = quads(N, N) if kind == "Q4" else triangles(N, N)
     case = Case(gravity=(0.0, 0.0))
@@ -61,7 +67,7 @@ def build_stretch(case_dir, kind, kinematic="large"):
     else:
         case.add_model("M2D" + kind, kind + "xxx")
     b = case.add_mesh_body(x, one_based(elements), model="M2D" + kind, material="RUBBR")
-    v = (STRETCH - 1.0) / (STEPS * H)
+    v = (stretch - 1.0) / (steps * H)
     for k, (px, py) in enumerate(x):
         if px < 1e-12:
             b.impose_velocity([k + 1], 1, ct=0.0)
@@ -69,8 +75,8 @@ def build_stretch(case_dir, kind, kinematic="large"):
             b.impose_velocity([k + 1], 2, ct=0.0)
         if py > 1.0 - 1e-12:
             b.impose_velocity([k + 1], 2, ct=v)
-    case.run.set(time_step=H, number_of_steps=STEPS, theta=1.0, plane="strain", newton_tolerance=1e-12,
-                 newton_max_iterations=30, output_dof_every=STEPS, output_hdf5_every=1)
+    case.run.set(time_step=H, number_of_steps=steps, theta=1.0, plane="strain", newton_tolerance=1e-12,
+                 newton_max_iterations=30, output_dof_every=steps, output_hdf5_every=1)
     case.write(case_dir)
     return x
 
@@ -138,6 +144,11 @@ def main():
             ck.at_most(f"{name}: max |sigma| (Pa)", smax, 10 * RHO * OMEGA ** 2 * 0.5)
         else:
             print(f"  (small strain, the same spin: max |X - (R - I) X0| = {dev:.3e} m, max |sigma| = {smax:.3e} Pa)")
+    inverted = Path(a.out, "inverted")
+    build_stretch(inverted, "Q4", stretch=-0.2, steps=1)
+    r = subprocess.run([a.fracas, "-q", "--overwrite", str(inverted)], capture_output=True, text=True)
+    ck.true("compressed through zero height: exit 1, 'element ... turned inside out'",
+            r.returncode == 1 and "turned inside out" in r.stderr, f"exit {r.returncode}", "exit 1")
     sys.exit(ck.finish())
 
 
