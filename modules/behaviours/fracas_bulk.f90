@@ -6,12 +6,20 @@
 !> computed) and plane stress (sigma_zz = 0, eps_zz computed by a local Newton
 !> on eps_zz around the 3D return; the tangent is the 3D consistent tangent
 !> condensed on sigma_zz = 0). See doc/mesh_mechanics.md.
+!> Finite strain: the compressible neo-Hookean law of LMGC90's 'mater neoh_'
+!> models (MatLib's NEOHOOKEAN), plane strain, stateless:
+!>   W(F) = lambda/2 (ln J)^2 - mu ln J + mu/2 (tr C - 3),  C = F'F, J = det F,
+!> lambda, mu the Lame constants of (young, poisson); bulk_neohooke gives the
+!> first Piola-Kirchhoff stress P = mu F + (lambda ln J - mu) F^-T and dP/dF.
 !>
 !> API
-!>   type(bulk_t): law (bulk_elastic | bulk_j2), density, young, poisson,
-!>                 yield0, hardening
-!>   bulk_from_material(m)                         -> bulk_t from a BULK_BEHAV.DAT record
+!>   type(bulk_t): law (bulk_elastic | bulk_j2 | bulk_neohookean), density,
+!>                 young, poisson, yield0, hardening
+!>   bulk_from_material(m [, model])               -> bulk_t from a BULK_BEHAV.DAT record
+!>                                                    and its model's options (finite strain:
+!>                                                    neo-Hookean, or J2 of LMGC90's Q4P0x)
 !>   bulk_update(mat, plane, eps, state_begin, state_end, dtan)
+!>   bulk_neohooke(mat, f, p, a, w [, cauchy, green])  finite strain, plane strain
 !>   bulk_yield_stress(mat, p), bulk_plastic_work(mat, p_begin, p_end)
 !>   plane_strain, plane_stress; gp_size = 13 and the gp_* index constants.
 !>
@@ -20,18 +28,23 @@
 !> reals: stress(4), total strain(4), plastic strain(4, gamma for xy), p.
 module fracas_bulk
   use fracas_kinds, only: wp
-  use fracas_deck, only: material_input_t
+  use fracas_deck, only: material_input_t, model_input_t, model_finite_strain
   use fracas_errors, only: input_error
   implicit none
   private
-  public :: bulk_t, bulk_elastic, bulk_j2, plane_strain, plane_stress, bulk_from_material, &
+  public :: bulk_t, bulk_elastic, bulk_j2, bulk_neohookean, bulk_j2_finite, bulk_neohooke, plane_strain, plane_stress, plane_axisym, plane_names, &
+            bulk_from_material, &
             bulk_update, bulk_yield_stress, bulk_plastic_work, bulk_elastic_tangent, &
             gp_size, gp_stress, gp_strain, gp_plastic_strain, gp_p, &
             gp_sxx, gp_syy, gp_sxy, gp_szz, gp_exx, gp_eyy, gp_gxy, gp_ezz, &
             gp_pxx, gp_pyy, gp_pgxy, gp_pzz
 
-  integer, parameter :: bulk_elastic = 1, bulk_j2 = 2
-  integer, parameter :: plane_strain = 1, plane_stress = 2
+  integer, parameter :: bulk_elastic = 1, bulk_j2 = 2, bulk_neohookean = 3, bulk_j2_finite = 4
+  !> plane_axisym: x is the radius r, y the axis; quantities per unit angle x 2 pi
+  !> (LMGC90's axisymmetry), the hoop component in the zz slot.
+  integer, parameter :: plane_strain = 1, plane_stress = 2, plane_axisym = 3
+  !> Their run-control words (COMMAND.DAT 'plane').
+  character(len=6), parameter :: plane_names(3) = ['strain', 'stress', 'axisym']
 
   !> Gauss-point state: first index of each block and every component.
   integer, parameter :: gp_size = 13
@@ -56,15 +69,21 @@ module fracas_bulk
 
 contains
 
-  !> The bulk law of a BULK_BEHAV.DAT record: ELAS -> elastic, ELAS_PLAS -> J2.
-  function bulk_from_material(m) result(mat)
+  !> The bulk law of a BULK_BEHAV.DAT record: ELAS -> elastic, ELAS_PLAS -> J2;
+  !> under a finite-strain model (model_finite_strain) ELAS -> neo-Hookean and
+  !> ELAS_PLAS -> finite-strain J2.
+  function bulk_from_material(m, model) result(mat)
     type(material_input_t), intent(in) :: m
+    type(model_input_t), intent(in), optional :: model
     type(bulk_t) :: mat
+    logical :: finite
+    finite = .false.
+    if (present(model)) finite = model_finite_strain(model)
     select case (trim(m%law))
     case ('ELAS')
-      mat%law = bulk_elastic
+      mat%law = merge(bulk_neohookean, bulk_elastic, finite)
     case ('ELAS_PLAS')
-      mat%law = bulk_j2
+      mat%law = merge(bulk_j2_finite, bulk_j2, finite)
       if (m%yield0 <= 0.0_wp) call input_error(m%src%file, m%src%line, 0, &
                                                'ELAS_PLAS '//trim(m%nickname)//': SIG0 must be > 0')
       if (m%hardening < 0.0_wp) call input_error(m%src%file, m%src%line, 0, &
@@ -234,6 +253,59 @@ contains
       dtan(i, i) = dtan(i, i) + 2.0_wp * g * beta * sym_diag(i)
     end do
   end subroutine return_3d
+
+  !> Neo-Hookean law (LMGC90's neoh_, MatLib's NEOHOOKEAN), plane strain
+  !> (F_zz = 1): f(4) = (F_xx, F_xy, F_yx, F_yy), F_iJ = d x_i / d X_J, the
+  !> order of LMGC90's finite-strain vectors. Returns the first Piola-Kirchhoff
+  !> stress p(4) (same order), the tangent a(4,4) = dP/dF (symmetric: second
+  !> derivatives of W) and the stored energy density w per unit reference
+  !> volume; optionally the Cauchy stress (xx, yy, xy, zz) and the
+  !> Green-Lagrange strain (xx, yy, 2 E_xy, zz = 0). J must be > 0 (the caller
+  !> checks).
+  !>   P = mu F + (lambda ln J - mu) F^-T
+  !>   A_iJkL = mu d_ik d_JL + lambda Fi_Ji Fi_Lk - (lambda ln J - mu) Fi_Jk Fi_Li  (Fi = F^-1)
+  pure subroutine bulk_neohooke(mat, f, p, a, w, cauchy, green)
+    type(bulk_t), intent(in) :: mat
+    real(wp), intent(in) :: f(4)
+    real(wp), intent(out) :: p(4), a(4, 4), w
+    real(wp), intent(out), optional :: cauchy(4), green(4)
+    real(wp) :: kb, mu, lam, fm(2, 2), fi(2, 2), jac, lnj, c(2, 2)
+    integer :: i, jj, k, l, r, s
+    call moduli(mat, kb, mu)
+    lam = kb - 2.0_wp * mu / 3.0_wp
+    fm = reshape([f(1), f(3), f(2), f(4)], [2, 2])     ! fm(i, J)
+    jac = fm(1, 1) * fm(2, 2) - fm(1, 2) * fm(2, 1)
+    fi = reshape([fm(2, 2), -fm(2, 1), -fm(1, 2), fm(1, 1)], [2, 2]) / jac   ! fi(J, i) = F^-1
+    lnj = log(jac)
+    c = matmul(transpose(fm), fm)
+    w = 0.5_wp * lam * lnj**2 - mu * lnj + 0.5_wp * mu * (c(1, 1) + c(2, 2) - 2.0_wp)
+    do i = 1, 2
+      do jj = 1, 2
+        p(2 * (i - 1) + jj) = mu * fm(i, jj) + (lam * lnj - mu) * fi(jj, i)
+      end do
+    end do
+    do i = 1, 2
+      do jj = 1, 2
+        r = 2 * (i - 1) + jj
+        do k = 1, 2
+          do l = 1, 2
+            s = 2 * (k - 1) + l
+            a(r, s) = lam * fi(jj, i) * fi(l, k) - (lam * lnj - mu) * fi(jj, k) * fi(l, i)
+            if (i == k .and. jj == l) a(r, s) = a(r, s) + mu
+          end do
+        end do
+      end do
+    end do
+    ! sigma = (mu b + (lambda ln J - mu) I) / J, b = F F'; sigma_zz = lambda ln J / J
+    if (present(cauchy)) then
+      c = matmul(fm, transpose(fm))
+      cauchy = [mu * c(1, 1) + lam * lnj - mu, mu * c(2, 2) + lam * lnj - mu, mu * c(1, 2), lam * lnj] / jac
+    end if
+    if (present(green)) then
+      c = matmul(transpose(fm), fm)
+      green = [0.5_wp * (c(1, 1) - 1.0_wp), 0.5_wp * (c(2, 2) - 1.0_wp), c(1, 2), 0.0_wp]
+    end if
+  end subroutine bulk_neohooke
 
   !> Static condensation of the zz component (sigma_zz = 0): the in-plane
   !> block becomes D_pp - D_pz D_zp / D_zz; zz row and column set to 0.

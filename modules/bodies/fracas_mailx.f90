@@ -20,10 +20,11 @@ module fracas_mailx
   use fracas_kinds, only: wp
   use fracas_errors, only: fatal, input_error, status_t, raise, failed
   use fracas_strings, only: itoa, rtoa
-  use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t
+  use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t, model_finite_strain
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, el_geometry_ok, el_area
-  use fracas_bulk, only: bulk_t, bulk_j2, plane_strain, plane_stress, gp_size, bulk_from_material, &
+  use fracas_bulk, only: bulk_t, bulk_j2, bulk_j2_finite, bulk_elastic, plane_strain, &
+                         plane_stress, plane_axisym, gp_size, bulk_from_material, &
                          gp_pxx, gp_pzz, gp_p
   use fracas_sparse, only: sparse_t, sparse_from_triplets, sparse_matvec
   use fracas_linear_solver, only: factor_t, factor_build, factor_update, factor_solve, factor_free, &
@@ -71,11 +72,14 @@ module fracas_mailx
     logical, allocatable :: driven(:, :)       !< (2,nnodes) velocity-driven dofs
     logical, allocatable :: movable(:)         !< (n) some dof is free
     type(drive_t), allocatable :: drives(:)    !< drive%body is the mesh node
-    ! Elements: kind, material, nodes (mesh node numbers), Gauss points.
-    integer, allocatable :: el_kind(:), el_mat(:), el_first(:), el_nodes(:), el_gp(:)
+    ! Elements: kind, material (BULK_BEHAV.DAT), bulk law (index in mats),
+    ! nodes (mesh node numbers), Gauss points.
+    integer, allocatable :: el_kind(:), el_mat(:), el_bulk(:), el_first(:), el_nodes(:), el_gp(:)
+    !> Bulk laws: mats(k) the law of material k, mats(nmat + k) material k under
+    !> a finite-strain (neoh_) model.
     type(bulk_t), allocatable :: mats(:)
     real(wp), allocatable :: gp(:, :), gp_begin(:, :)   !< (gp_size, ngp) Gauss-point states
-    logical, allocatable :: nonlinear(:)       !< (n) some element is J2: Newton iterations
+    logical, allocatable :: nonlinear(:)       !< (n) some element is J2 or neo-Hookean: Newton iterations
     logical :: any_nonlinear = .false.
     logical, allocatable :: lumped(:)          !< (n) lumped mass
     real(wp), allocatable :: mdiag(:, :)       !< (2,nnodes) lumped mass (row sums if consistent)
@@ -116,14 +120,21 @@ contains
     type(deck_t), intent(in) :: deck
     type(mailx_t), intent(out) :: m
     real(wp), intent(in) :: h, theta
-    integer :: ib, b, nn, ne, ie, k, j, nel_nodes, ng, imat, kind, node
+    integer :: ib, b, nn, ne, ie, k, j, nel_nodes, ng, imat, kind, node, nlaw
     logical, allocatable :: used(:)
     real(wp) :: extent
     m%h = h
     m%theta = theta
     m%time = deck%dof_time
     m%gravity = deck%gravity(1:2)
-    m%plane = merge(plane_stress, plane_strain, deck%run%plane == 'stress')
+    select case (deck%run%plane)
+    case ('stress')
+      m%plane = plane_stress
+    case ('axisym')
+      m%plane = plane_axisym
+    case default
+      m%plane = plane_strain
+    end select
     m%method = trim(deck%run%linear_solver)
     ! LMGC90 starts a driven node of a mesh from its previous velocity (lmgc90):
     ! its examples' driven nodes move theta h v in the first step (4T3 exploded).
@@ -150,7 +161,8 @@ contains
     end do
     m%nnodes = nn; m%nelem = ne; m%ngp = ng
     allocate (m%node_body(nn), m%ref(2, nn), m%x(2, nn), m%xbegin(2, nn), m%v(2, nn), m%vbegin(2, nn), &
-              m%vfree(2, nn), m%driven(2, nn), m%movable(m%n), m%el_kind(ne), m%el_mat(ne), m%el_first(ne + 1), &
+              m%vfree(2, nn), m%driven(2, nn), m%movable(m%n), m%el_kind(ne), m%el_mat(ne), m%el_bulk(ne), &
+              m%el_first(ne + 1), &
               m%el_nodes(nel_nodes), m%el_gp(ne + 1), m%gp(gp_size, ng), m%gp_begin(gp_size, ng), &
               m%nonlinear(m%n), m%lumped(m%n), m%mdiag(2, nn), m%fext(2, nn), m%fint_begin(2, nn), &
               m%fint(2, nn), m%res(2, nn), m%imp(2, nn), m%fsupport(2, nn), m%finert(2, nn), m%tmp(2, nn))
@@ -159,7 +171,7 @@ contains
     m%gp = 0.0_wp
     m%fext = 0.0_wp; m%fint = 0.0_wp; m%res = 0.0_wp; m%imp = 0.0_wp; m%fsupport = 0.0_wp; m%finert = 0.0_wp
     ! Bulk laws of the materials meshes use (others may be RIGID).
-    allocate (m%mats(size(deck%materials)), used(size(deck%materials)))
+    allocate (m%mats(2 * size(deck%materials)), used(2 * size(deck%materials)))
     used = .false.
     b = 0
     ne = 0
@@ -184,12 +196,28 @@ contains
             end do
             if (imat == 0) call input_error(el%src%file, el%src%line, 37, "material '"//el%behav// &
               "' is not defined in BULK_BEHAV.DAT")
-            if (.not. used(imat)) m%mats(imat) = bulk_from_material(deck%materials(imat))
-            used(imat) = .true.
             m%el_mat(ne) = imat
             k = model_index(deck%models, el%model)
             if (deck%models(k)%mass_storage == 'coher') m%lumped(b) = .false.
-            if (m%mats(imat)%law == bulk_j2) m%nonlinear(b) = .true.
+            ! A material's law under a finite-strain model is kept apart.
+            nlaw = imat
+            if (model_finite_strain(deck%models(k))) then
+              nlaw = imat + size(deck%materials)
+              if (m%plane == plane_stress) call input_error(deck%models(k)%src%file, deck%models(k)%src%line, 2, &
+                "model '"//trim(deck%models(k)%nickname)//"' (mater "//deck%models(k)%material// &
+                ', finite strain) runs in plane strain only, as in LMGC90; the run control asks for plane stress')
+            end if
+            if (.not. used(nlaw)) m%mats(nlaw) = bulk_from_material(deck%materials(imat), deck%models(k))
+            ! Axisymmetry: LMGC90's finite-strain J2 (Q4P0x) only so far, and no mesh contactors.
+            if (m%plane == plane_axisym .and. m%mats(nlaw)%law /= bulk_j2_finite) call input_error(el%src%file, &
+              el%src%line, 23, "run control 'plane axisym': Fracas runs axisymmetric meshes with LMGC90's "// &
+              "finite-strain J2 model only (kine_ large, mater J2iso, Q4P0x); model '"//trim(el%model)//"' is not")
+            if (m%plane == plane_axisym .and. size(bd%tactors) > 0) call input_error(bd%src%file, bd%src%line, 0, &
+              "run control 'plane axisym': axisymmetric meshes with contactors are not supported (contacts are "// &
+              'planar)')
+            used(nlaw) = .true.
+            m%el_bulk(ne) = nlaw
+            if (m%mats(nlaw)%law /= bulk_elastic) m%nonlinear(b) = .true.
             if (size(el%nodes) /= el_nnodes(m%el_kind(ne))) call input_error(el%src%file, el%src%line, 16, &
               'element has the wrong number of nodes for its type')
             do j = 1, size(el%nodes)
@@ -300,11 +328,12 @@ contains
   !> Plastic strain and cumulative plastic strain of J2 elements from GPV.INI:
   !> the internals line Fracas writes (plastic strain xx, yy, γxy, zz, p, von
   !> Mises), or LMGC90's Q4P0x line (Cp⁻¹ 11, 22, 12, 33, p, von Mises), whose
-  !> finite-strain Cp⁻¹ ≈ I − 2 ε_p is taken to first order.
+  !> finite-strain Cp⁻¹ ≈ I − 2 ε_p is taken to first order by small-strain J2;
+  !> finite-strain J2 keeps Cp⁻¹ (as Cp⁻¹ − I).
   subroutine restore_plastic_state(m, deck)
     type(mailx_t), intent(inout) :: m
     type(deck_t), intent(in) :: deck
-    integer :: k, e, g, ng
+    integer :: k, e, g, ng, law
     real(wp) :: v(6)
     do k = 1, size(deck%gpv_ini)
       associate (r => deck%gpv_ini(k))
@@ -313,12 +342,17 @@ contains
         e = m%elem_first(r%body) - 1 + r%element
         if (r%element < 1 .or. e >= m%elem_first(r%body + 1)) call input_error(r%src%file, r%src%line, 9, &
           'GPV.INI: element number out of range for this MAILx body')
-        if (m%mats(m%el_mat(e))%law /= bulk_j2 .or. size(r%values, 1) < 14) cycle
+        law = m%mats(m%el_bulk(e))%law
+        if ((law /= bulk_j2 .and. law /= bulk_j2_finite) .or. size(r%values, 1) < 14) cycle
         ng = m%el_gp(e + 1) - m%el_gp(e)
         do g = 1, ng
           v = r%values(9:14, min(g, size(r%values, 2)))
-          if (abs(v(1) - 1.0_wp) < 0.5_wp .and. abs(v(2) - 1.0_wp) < 0.5_wp) &   ! LMGC90's Cp^-1
+          if (law == bulk_j2_finite) then
+            ! Cp^-1 itself, kept as Cp^-1 - I (a zero state is the virgin one)
+            v(1:4) = v(1:4) - [1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp]
+          else if (abs(v(1) - 1.0_wp) < 0.5_wp .and. abs(v(2) - 1.0_wp) < 0.5_wp) then   ! LMGC90's Cp^-1
             v(1:4) = [0.5_wp * (1.0_wp - v(1)), 0.5_wp * (1.0_wp - v(2)), -v(3), 0.5_wp * (1.0_wp - v(4))]
+          end if
           m%gp_begin(gp_pxx:gp_pzz, m%el_gp(e) + g - 1) = v(1:4)
           m%gp_begin(gp_p, m%el_gp(e) + g - 1) = v(5)
         end do
@@ -403,11 +437,12 @@ contains
   !> Element loop of body b at displacements u: stiffness or tangent (and with
   !> with_mass the mass), internal forces m%fint and Gauss-point states m%gp
   !> (from m%gp_begin) of the body.
-  subroutine assemble_body(m, b, u, with_mass)
+  subroutine assemble_body(m, b, u, with_mass, status)
     type(mailx_t), intent(inout) :: m
     integer, intent(in) :: b
     real(wp), intent(in) :: u(:, :)
     logical, intent(in) :: with_mass
+    type(status_t), intent(inout), optional :: status   !< an element turned inside out
     integer :: e, nn, nd, i, j, k, cnt, base
     real(wp), allocatable :: me(:, :), ke(:, :), fi(:), xe(:, :), ue(:)
     integer, allocatable :: dofs(:)
@@ -435,9 +470,15 @@ contains
       nn = el_nnodes(m%el_kind(e))
       call element_data(m, e, b, u, xe, ue, dofs)
       allocate (ke(2 * nn, 2 * nn), fi(2 * nn), me(2 * nn, 2 * nn))
-      call el_response(m%el_kind(e), xe, ue, m%mats(m%el_mat(e)), m%plane, &
+      call el_response(m%el_kind(e), xe, ue, m%mats(m%el_bulk(e)), m%plane, &
                        m%gp_begin(:, m%el_gp(e):m%el_gp(e + 1) - 1), m%gp(:, m%el_gp(e):m%el_gp(e + 1) - 1), &
                        fi, ke, .true., eel, wpl)
+      ! finite-strain elements say J <= 0 at a Gauss point with fi = huge
+      if (any(fi >= huge(1.0_wp))) then
+        call raise(status, 'MAILx body '//itoa(b)//': element '//itoa(e - m%elem_first(b) + 1)// &
+                   ' turned inside out (det F <= 0 at a Gauss point): the step is too large for this deformation')
+        return
+      end if
       m%eel(b) = m%eel(b) + eel
       m%wpl(b) = m%wpl(b) + wpl
       do i = 1, nn
@@ -446,7 +487,7 @@ contains
       end do
       me = 0.0_wp
       if (with_mass) then
-        call el_mass(m%el_kind(e), xe, m%mats(m%el_mat(e))%density, m%lumped(b), me)
+        call el_mass(m%el_kind(e), xe, m%mats(m%el_bulk(e))%density, m%lumped(b), me, m%plane == plane_axisym)
         do i = 1, nn
           k = m%el_nodes(m%el_first(e) + i - 1)
           m%mdiag(1, k) = m%mdiag(1, k) + sum(me(2 * i - 1, :))
@@ -509,7 +550,8 @@ contains
     do b = 1, m%n
       i1 = m%node_first(b); i2 = m%node_first(b + 1) - 1
       if (m%nonlinear(b)) then
-        call assemble_body(m, b, u, with_mass=.false.)
+        call assemble_body(m, b, u, with_mass=.false., status=status)
+        if (failed(status)) return
         call factorize_body(m, b, status=status)
         if (failed(status)) return
       else
@@ -1052,7 +1094,7 @@ contains
       do ie = m%elem_first(b), m%elem_first(b + 1) - 1
         call element_data(m, ie, b, m%x, xe, ue, dofs)
         allocate (fi(size(ue)), ke(size(ue), size(ue)))
-        call el_response(m%el_kind(ie), xe, ue, m%mats(m%el_mat(ie)), m%plane, &
+        call el_response(m%el_kind(ie), xe, ue, m%mats(m%el_bulk(ie)), m%plane, &
                          m%gp_begin(:, m%el_gp(ie):m%el_gp(ie + 1) - 1), gp(:, m%el_gp(ie):m%el_gp(ie + 1) - 1), &
                          fi, ke, .false., eel, wpl)
         deallocate (fi, ke)

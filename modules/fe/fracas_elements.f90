@@ -30,7 +30,8 @@
 module fracas_elements
   use fracas_kinds, only: wp
   use fracas_bulk, only: bulk_t, bulk_update, bulk_plastic_work, gp_size, gp_stress, gp_strain, &
-                         gp_plastic_strain, gp_p, plane_strain
+                         gp_plastic_strain, gp_p, plane_strain, bulk_neohookean, bulk_neohooke, &
+                         bulk_j2_finite, bulk_yield_stress, plane_axisym
   implicit none
   private
   public :: el_t3, el_q4, el_t6, el_q8, el_q4p0, el_max_nodes, el_max_dofs, el_max_gauss, &
@@ -409,11 +410,12 @@ contains
   !> rho * integral of N_a N_b on both directions. Lumped (diagonal): row sums
   !> for T3/Q4, HRZ for T6/Q8 (the consistent diagonal scaled to the total
   !> mass; row sums would give zero or negative corner masses there).
-  pure subroutine el_mass(kind, x, rho, lumped, m)
+  pure subroutine el_mass(kind, x, rho, lumped, m, axisym)
     integer, intent(in) :: kind
     real(wp), intent(in) :: x(:, :), rho
     logical, intent(in) :: lumped
     real(wp), intent(out) :: m(:, :)
+    logical, intent(in), optional :: axisym   !< x is the radius: the density integrated over 2 pi r dA
     real(wp) :: xi(2, el_max_gauss), w(el_max_gauss), n(el_max_nodes), dn(2, el_max_nodes)
     real(wp) :: dnx(2, el_max_nodes), det, ms(el_max_nodes, el_max_nodes), diag(el_max_nodes), total
     integer :: ng, g, nn, a, b
@@ -423,6 +425,9 @@ contains
     do g = 1, ng
       call el_shape(kind, xi(:, g), n, dn)
       call physical_derivatives(nn, x, dn, dnx, det)
+      if (present(axisym)) then
+        if (axisym) det = det * 6.28318530717958647692_wp * dot_product(n(1:nn), x(1, 1:nn))
+      end if
       ! (n_a n_b) first: the matrix comes out exactly symmetric
       do b = 1, nn
         ms(1:nn, b) = ms(1:nn, b) + (rho * w(g) * det) * (n(1:nn) * n(b))
@@ -465,6 +470,15 @@ contains
   !> strain at each Gauss point is replaced by its element mean (3D trace,
   !> eps_zz then non-zero at a Gauss point); in plane stress it is a Q4.
   !> For an elastic material fi = ke u.
+  !> A neo-Hookean material (finite strain) is integrated in the total
+  !> Lagrangian way, as LMGC90 does with its MatLib models: at each Gauss point
+  !> F = I + du/dX (reference derivatives), fi = integral of G' P, ke = integral
+  !> of G' (dP/dF) G (G: u -> du/dX, rows F_xx, F_xy, F_yx, F_yy), over the
+  !> reference element; el_q4p0 is then a plain Q4 (LMGC90's MatLib path uses
+  !> the full gradient on every Gauss point), plane strain only. The states get
+  !> the Cauchy stress and the Green-Lagrange strain (xx, yy, 2 xy, zz);
+  !> elastic_energy is the integral of W. An element turned inside out (J <= 0
+  !> at a Gauss point) gives fi = huge: the caller's Newton loop fails.
   pure subroutine el_response(kind, x, u, mat, plane, gp_begin, gp_end, fi, ke, want_tangent, &
                               elastic_energy, plastic_work)
     integer, intent(in) :: kind
@@ -485,6 +499,16 @@ contains
 
     nn = el_nnodes(kind)
     nd = 2 * nn
+    if (mat%law == bulk_neohookean) then
+      call response_finite(kind, x, u, mat, gp_end, fi, ke, want_tangent, elastic_energy)
+      plastic_work = 0.0_wp
+      return
+    end if
+    if (mat%law == bulk_j2_finite) then
+      call response_j2_finite(kind, x, u, mat, plane == plane_axisym, gp_begin, gp_end, fi, ke, want_tangent, &
+                              elastic_energy, plastic_work)
+      return
+    end if
     bbar = kind == el_q4p0 .and. plane == plane_strain
     nrow = merge(4, 3, bbar)
     call quadrature(kind, rule_stiffness, ng, xi, w)
@@ -502,13 +526,7 @@ contains
     end do
     if (bbar) bvol_mean(1:nd) = bvol_mean(1:nd) / sum(wdet(1:ng))
 
-    fi(1:nd) = 0.0_wp
-    ! Without a tangent the caller may pass any (small) array.
-    if (want_tangent) then
-      ke(1:nd, 1:nd) = 0.0_wp
-    else
-      ke = 0.0_wp
-    end if
+    call zero_response(nd, want_tangent, fi, ke)
     elastic_energy = 0.0_wp
     plastic_work = 0.0_wp
     do g = 1, ng
@@ -555,4 +573,220 @@ contains
       plastic_work = plastic_work + wdet(g) * bulk_plastic_work(mat, gp_begin(gp_p, g), gp_end(gp_p, g))
     end do
   end subroutine el_response
+
+  !> fi(1:nd) = 0 and the tangent ke(1:nd, 1:nd) = 0; without a tangent the caller
+  !> may pass any (small) ke, set to 0 whole.
+  pure subroutine zero_response(nd, want_tangent, fi, ke)
+    integer, intent(in) :: nd
+    logical, intent(in) :: want_tangent
+    real(wp), intent(out) :: fi(:)
+    real(wp), intent(inout) :: ke(:, :)
+    fi(1:nd) = 0.0_wp
+    if (want_tangent) then
+      ke(1:nd, 1:nd) = 0.0_wp
+    else
+      ke = 0.0_wp
+    end if
+  end subroutine zero_response
+
+  !> Total Lagrangian response of a neo-Hookean element (see el_response).
+  pure subroutine response_finite(kind, x, u, mat, gp_end, fi, ke, want_tangent, energy)
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: x(:, :), u(:)
+    type(bulk_t), intent(in) :: mat
+    real(wp), intent(out) :: gp_end(:, :), fi(:), ke(:, :)
+    logical, intent(in) :: want_tangent
+    real(wp), intent(out) :: energy
+    real(wp) :: xi(2, el_max_gauss), w(el_max_gauss), n(el_max_nodes), dn(2, el_max_nodes)
+    real(wp) :: dnx(2, el_max_nodes), det, gmat(4, el_max_dofs), ag(4, el_max_dofs)
+    real(wp) :: f(4), p(4), a(4, 4), wd, sig(4), green(4)
+    integer :: ng, g, nn, nd, c, i, j
+    nn = el_nnodes(kind)
+    nd = 2 * nn
+    call quadrature(kind, rule_stiffness, ng, xi, w)
+    call zero_response(nd, want_tangent, fi, ke)
+    energy = 0.0_wp
+    do g = 1, ng
+      call el_shape(kind, xi(:, g), n, dn)
+      call physical_derivatives(nn, x, dn, dnx, det)
+      ! G: row 2(i-1)+J of du_i/dX_J; node c's dof i is column 2(c-1)+i
+      gmat(:, 1:nd) = 0.0_wp
+      do c = 1, nn
+        gmat(1:2, 2 * c - 1) = dnx(:, c)
+        gmat(3:4, 2 * c) = dnx(:, c)
+      end do
+      f = [1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp] + matmul(gmat(:, 1:nd), u(1:nd))
+      if (f(1) * f(4) - f(2) * f(3) <= 0.0_wp) then
+        fi(1:nd) = huge(1.0_wp)
+        gp_end(:, g:ng) = 0.0_wp
+        return
+      end if
+      call bulk_neohooke(mat, f, p, a, wd, sig, green)
+      gp_end(:, g) = 0.0_wp
+      gp_end(gp_stress:gp_stress + 3, g) = sig
+      gp_end(gp_strain:gp_strain + 3, g) = green
+      fi(1:nd) = fi(1:nd) + (w(g) * det) * matmul(p, gmat(:, 1:nd))
+      energy = energy + w(g) * det * wd
+      if (want_tangent) then
+        ag(:, 1:nd) = matmul(a, gmat(:, 1:nd))
+        do j = 1, nd
+          do i = 1, nd
+            ke(i, j) = ke(i, j) + (w(g) * det) * dot_product(gmat(:, i), ag(:, j))
+          end do
+        end do
+      end if
+    end do
+  end subroutine response_finite
+
+  !> LMGC90's internal finite-strain J2 element (its Q4P0x with kine_ large;
+  !> doc/mesh_mechanics.md §7): multiplicative plasticity on the isochoric
+  !> elastic Finger tensor (Simo), the deviatoric Kirchhoff stress mu dev(b_e^)
+  !> at each Gauss point, one pressure per element from the element's volume
+  !> ratio Jm = V / V0, p = K/2 (Jm - 1/Jm), radial return with mu^ = mu tr(b_e^)/3
+  !> and linear hardening; the new b_e keeps the element mean of the trial
+  !> traces (as LMGC90). State: Cauchy stress, Green-Lagrange strain, Cp^-1 - I
+  !> (xx, yy, xy, zz) in the plastic-strain slots, p the cumulative plastic
+  !> strain. Internal forces: integral of B(x)' sigma over the current element.
+  !> The tangent is the central difference of fi (symmetrized). Axisymmetric
+  !> (x the radius r): F_zz = 1 + u_r / r, the hoop stress in the zz slot, volumes
+  !> 2 pi r dA (LMGC90's).
+  pure subroutine response_j2_finite(kind, x, u, mat, axisym, gp_begin, gp_end, fi, ke, want_tangent, energy, &
+                                     plastic_work)
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: x(:, :), u(:), gp_begin(:, :)
+    type(bulk_t), intent(in) :: mat
+    logical, intent(in) :: axisym
+    real(wp), intent(out) :: gp_end(:, :), fi(:), ke(:, :)
+    logical, intent(in) :: want_tangent
+    real(wp), intent(out) :: energy, plastic_work
+    real(wp) :: up(el_max_dofs), fp(el_max_dofs), fm(el_max_dofs), scratch(gp_size, el_max_gauss)
+    real(wp) :: h, e1, e2
+    integer :: nd, j
+    nd = 2 * el_nnodes(kind)
+    call j2_finite_forces(kind, x, u, mat, axisym, gp_begin, gp_end, fi, energy, plastic_work)
+    call zero_response(nd, want_tangent, fp, ke)
+    if (.not. want_tangent) return
+    ! step: 1e-7 of the element's size, a displacement well resolved in double
+    h = 1.0e-7_wp * sqrt(max(el_area(kind, x), tiny(1.0_wp)))
+    up(1:nd) = u(1:nd)
+    do j = 1, nd
+      up(j) = u(j) + h
+      call j2_finite_forces(kind, x, up, mat, axisym, gp_begin, scratch, fp, e1, e2)
+      up(j) = u(j) - h
+      call j2_finite_forces(kind, x, up, mat, axisym, gp_begin, scratch, fm, e1, e2)
+      up(j) = u(j)
+      ke(1:nd, j) = (fp(1:nd) - fm(1:nd)) / (2.0_wp * h)
+    end do
+    ke(1:nd, 1:nd) = 0.5_wp * (ke(1:nd, 1:nd) + transpose(ke(1:nd, 1:nd)))
+  end subroutine response_j2_finite
+
+  !> Internal forces and states of response_j2_finite.
+  pure subroutine j2_finite_forces(kind, x, u, mat, axisym, gp_begin, gp_end, fi, energy, plastic_work)
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: x(:, :), u(:), gp_begin(:, :)
+    type(bulk_t), intent(in) :: mat
+    logical, intent(in) :: axisym
+    real(wp), intent(out) :: gp_end(:, :), fi(:), energy, plastic_work
+    real(wp) :: xi(2, el_max_gauss), w(el_max_gauss), n(el_max_nodes), dn(2, el_max_nodes)
+    real(wp) :: dnx(2, el_max_nodes, el_max_gauss), dv0(el_max_gauss), det
+    real(wp) :: f(2, 2, el_max_gauss), jac(el_max_gauss), tf(el_max_gauss), dev(4, el_max_gauss)
+    real(wp) :: cpi(2, 2), be(2, 2), be33, s(4), nrm, q, sy, dgam, mub, finv(2, 2), bn(2, 2)
+    real(wp) :: kb, mu, v0, v, jm, pres, trabe, sig(4), dndx(2), pnew(el_max_gauss), c(2, 2)
+    real(wp) :: f33(el_max_gauss), nsh(el_max_nodes, el_max_gauss), rcur
+    real(wp), parameter :: two_pi = 6.28318530717958647692_wp
+    logical :: plastic(el_max_gauss)
+    integer :: ng, g, nn, nd, a
+    nn = el_nnodes(kind)
+    nd = 2 * nn
+    kb = mat%young / (3.0_wp * (1.0_wp - 2.0_wp * mat%poisson))
+    mu = mat%young / (2.0_wp * (1.0_wp + mat%poisson))
+    call quadrature(kind, rule_stiffness, ng, xi, w)
+    fi(1:nd) = 0.0_wp
+    energy = 0.0_wp
+    plastic_work = 0.0_wp
+    v0 = 0.0_wp
+    v = 0.0_wp
+    trabe = 0.0_wp
+    do g = 1, ng
+      call el_shape(kind, xi(:, g), n, dn)
+      call physical_derivatives(nn, x, dn, dnx(:, :, g), det)
+      nsh(1:nn, g) = n(1:nn)
+      dv0(g) = w(g) * det
+      f(:, :, g) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, 2])
+      f33(g) = 1.0_wp
+      do a = 1, nn
+        f(1, :, g) = f(1, :, g) + u(2 * a - 1) * dnx(:, a, g)
+        f(2, :, g) = f(2, :, g) + u(2 * a) * dnx(:, a, g)
+      end do
+      if (axisym) then
+        ! r at the Gauss point; hoop stretch (r + u_r) / r
+        dv0(g) = dv0(g) * two_pi * dot_product(n(1:nn), x(1, 1:nn))
+        f33(g) = 1.0_wp + dot_product(n(1:nn), u(1:nd:2)) / dot_product(n(1:nn), x(1, 1:nn))
+      end if
+      jac(g) = (f(1, 1, g) * f(2, 2, g) - f(1, 2, g) * f(2, 1, g)) * f33(g)
+      if (jac(g) <= 0.0_wp) then
+        fi(1:nd) = huge(1.0_wp)
+        gp_end(:, 1:ng) = 0.0_wp
+        return
+      end if
+      v0 = v0 + dv0(g)
+      v = v + jac(g) * dv0(g)
+      ! trial isochoric elastic Finger tensor from Cp^-1 at the start of the step
+      cpi = reshape([gp_begin(gp_plastic_strain, g) + 1.0_wp, gp_begin(gp_plastic_strain + 2, g), &
+                     gp_begin(gp_plastic_strain + 2, g), gp_begin(gp_plastic_strain + 1, g) + 1.0_wp], [2, 2])
+      be = matmul(f(:, :, g), matmul(cpi, transpose(f(:, :, g)))) * jac(g)**(-2.0_wp / 3.0_wp)
+      be33 = (gp_begin(gp_plastic_strain + 3, g) + 1.0_wp) * f33(g)**2 * jac(g)**(-2.0_wp / 3.0_wp)
+      tf(g) = (be(1, 1) + be(2, 2) + be33) / 3.0_wp
+      trabe = trabe + tf(g)
+      dev(:, g) = [be(1, 1) - tf(g), be(2, 2) - tf(g), be(1, 2), be33 - tf(g)]
+      s = mu * dev(:, g)
+      nrm = sqrt(s(1)**2 + s(2)**2 + s(4)**2 + 2.0_wp * s(3)**2)
+      q = sqrt(1.5_wp) * nrm
+      sy = bulk_yield_stress(mat, gp_begin(gp_p, g))
+      plastic(g) = q > sy
+      pnew(g) = gp_begin(gp_p, g)
+      if (plastic(g)) then
+        mub = mu * tf(g)
+        dgam = (q - sy) / (sqrt(6.0_wp) * mub + sqrt(2.0_wp / 3.0_wp) * mat%hardening)
+        s = s - 2.0_wp * mub * dgam * s / nrm
+        dev(:, g) = s / mu
+        pnew(g) = gp_begin(gp_p, g) + sqrt(2.0_wp / 3.0_wp) * dgam
+      end if
+    end do
+    jm = v / v0
+    pres = 0.5_wp * kb * (jm - 1.0_wp / jm)
+    trabe = trabe / ng
+    do g = 1, ng
+      finv = reshape([f(2, 2, g), -f(2, 1, g), -f(1, 2, g), f(1, 1, g)], [2, 2]) / (jac(g) / f33(g))
+      sig = mu * dev(:, g) / jac(g) + pres * [1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp]
+      gp_end(:, g) = 0.0_wp
+      gp_end(gp_stress:gp_stress + 3, g) = sig
+      c = matmul(transpose(f(:, :, g)), f(:, :, g))
+      gp_end(gp_strain:gp_strain + 3, g) = [0.5_wp * (c(1, 1) - 1.0_wp), 0.5_wp * (c(2, 2) - 1.0_wp), c(1, 2), &
+                                            0.5_wp * (f33(g)**2 - 1.0_wp)]
+      gp_end(gp_plastic_strain:gp_plastic_strain + 3, g) = gp_begin(gp_plastic_strain:gp_plastic_strain + 3, g)
+      if (plastic(g)) then
+        ! b_e = J^(2/3) (dev + mean trace), pulled back: Cp^-1 = F^-1 b_e F^-T
+        bn = reshape([dev(1, g) + trabe, dev(3, g), dev(3, g), dev(2, g) + trabe], [2, 2]) * &
+             jac(g)**(2.0_wp / 3.0_wp)
+        cpi = matmul(finv, matmul(bn, transpose(finv)))
+        gp_end(gp_plastic_strain:gp_plastic_strain + 3, g) = [cpi(1, 1) - 1.0_wp, cpi(2, 2) - 1.0_wp, cpi(1, 2), &
+          (dev(4, g) + trabe) * jac(g)**(2.0_wp / 3.0_wp) / f33(g)**2 - 1.0_wp]
+      end if
+      gp_end(gp_p, g) = pnew(g)
+      ! fi_a = integral over the current element of sigma . grad_x N_a
+      rcur = 0.0_wp
+      if (axisym) rcur = dot_product(nsh(1:nn, g), x(1, 1:nn) + u(1:nd:2))
+      do a = 1, nn
+        dndx = matmul(dnx(:, a, g), finv)
+        fi(2 * a - 1) = fi(2 * a - 1) + jac(g) * dv0(g) * (sig(1) * dndx(1) + sig(3) * dndx(2))
+        fi(2 * a) = fi(2 * a) + jac(g) * dv0(g) * (sig(3) * dndx(1) + sig(2) * dndx(2))
+        ! hoop term sigma_tt N_a / r
+        if (axisym) fi(2 * a - 1) = fi(2 * a - 1) + jac(g) * dv0(g) * sig(4) * nsh(a, g) / rcur
+      end do
+      energy = energy + dv0(g) * 0.5_wp * mu * (3.0_wp * tf(g) - 3.0_wp)
+      plastic_work = plastic_work + dv0(g) * bulk_plastic_work(mat, gp_begin(gp_p, g), pnew(g))
+    end do
+    energy = energy + v0 * 0.5_wp * kb * (0.5_wp * (jm**2 - 1.0_wp) - log(jm))
+  end subroutine j2_finite_forces
 end module fracas_elements

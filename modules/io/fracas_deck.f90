@@ -6,6 +6,7 @@ module fracas_deck
   use fracas_kinds, only: wp
   implicit none
   private
+  public :: model_finite_strain
   public :: source_t, tactor_input_t, body_input_t, material_input_t, law_input_t, &
             see_rule_input_t, driven_dof_input_t, dof_record_t, contact_record_t, &
             run_control_t, deck_t, element_input_t, model_input_t, gpv_record_t, postpro_input_t
@@ -188,7 +189,7 @@ module fracas_deck
     character(len=4) :: nlgs_unconverged = 'warn'  !< a step at the sweep limit: 'warn' | 'fail' (exit 3 at the end) | 'stop'
     integer :: progress_every = 0        !< progress line every n steps (0: about 20 lines a run)
     ! Meshed bodies (see doc/input_reference.md)
-    character(len=6) :: plane = 'strain'      !< 2D hypothesis of meshed bodies: 'strain' | 'stress'
+    character(len=6) :: plane = 'strain'      !< 2D hypothesis of meshed bodies: 'strain' | 'stress' | 'axisym'
     real(wp) :: newton_tolerance = 1.0e-6_wp  !< relative residual of the Newton loop of nonlinear bodies
     integer :: newton_max_iterations = 20
     character(len=7) :: linear_solver = 'auto'  !< 'auto', 'dense', 'cholmod'
@@ -252,4 +253,14 @@ module fracas_deck
     character(len=:), allocatable :: command_file
     character(len=256), allocatable :: settings(:)
   end type deck_t
+contains
+
+  !> The model is run at finite strain: 'mater neoh_' (MatLib's neo-Hookean), or
+  !> LMGC90's internal finite-strain J2 ('kine_ large', 'mater J2iso', element
+  !> Q4P0x, no external library: the only large-strain model of LMGC90's own).
+  pure logical function model_finite_strain(model)
+    type(model_input_t), intent(in) :: model
+    model_finite_strain = model%material == 'neoh_' .or. (model%kinematic == 'large' .and. &
+      model%material == 'J2iso' .and. model%element == 'Q4P0x' .and. model%external == 'no___')
+  end function model_finite_strain
 end module fracas_deck

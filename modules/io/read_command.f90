@@ -335,7 +335,7 @@ contains
     select case (trim(keys(key)))
     case ('nlgs_check'); s = 'Quad Maxm QM/16'
     case ('nlgs_order'); s = 'stored reversed shuffled colored'
-    case ('plane'); s = 'strain stress'
+    case ('plane'); s = 'strain stress axisym'
     case ('linear_solver'); s = 'auto dense cholmod'
     case ('driven_start'); s = 'lmgc90 imposed initial'
     case ('cohesive_damage'); s = 'implicit explicit lmgc90'

@@ -6,12 +6,13 @@
 !> (30-34) on one line, and one more option per line (name 23-27, value
 !> 30-34). Fracas runs LMGC90's internal mechanical models: physics MECAx,
 !> elements T3xxx, Q4xxx, T6xxx, Q8xxx, Q4P0x, options kine_ (small|large),
-!> form_ (UpdtL|TotaL), mater (elas_|J2iso), mstrg (lump_|coher), aniso
-!> (iso__), isext (no___). The rigid model (element Rxx2D) that pylmgc90
+!> form_ (UpdtL|TotaL), mater (elas_|J2iso|neoh_), mstrg (lump_|coher), aniso
+!> (iso__), isext (no___|MatL_). mater neoh_ (LMGC90's MatLib neo-Hookean law)
+!> is finite strain: it needs kine_ large and form_ TotaL, as in LMGC90. The rigid model (element Rxx2D) that pylmgc90
 !> writes for rigid bodies is read and kept; no element may use it.
 module fracas_read_models
   use fracas_kinds, only: wp
-  use fracas_deck, only: model_input_t, body_input_t, material_input_t
+  use fracas_deck, only: model_input_t, body_input_t, material_input_t, model_finite_strain
   use fracas_errors, only: input_error, warn
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, is_blank, &
                                 keyword_of, is_data, get_word, itoa
@@ -33,10 +34,11 @@ module fracas_read_models
   !> MatLib computes the same laws as its internal models for the 'mater' values
   !> Fracas runs (elas_: linear isotropic elasticity, J2iso: J2 plasticity with
   !> isotropic hardening, from the same BULK_BEHAV.DAT constants), so a MatLib
-  !> model runs as the internal one; other 'mater' values are refused by name.
+  !> model runs as the internal one; neoh_ (MatLib's NEOHOOKEAN, finite strain)
+  !> runs as Fracas's neo-Hookean law; other 'mater' values are refused by name.
   !> cplth: coupling with a thermal model, only 'no___' (none).
   character(len=5), parameter :: option_values(3, n_options) = reshape([character(len=5) :: &
-    'small', 'large', '     ', 'UpdtL', 'TotaL', 'xxxxx', 'elas_', 'J2iso', '     ', 'lump_', 'coher', '     ', &
+    'small', 'large', '     ', 'UpdtL', 'TotaL', 'xxxxx', 'elas_', 'J2iso', 'neoh_', 'lump_', 'coher', '     ', &
     'iso__', '     ', '     ', 'no___', 'MatL_', '     ', 'no___', '     ', '     '], [3, n_options])
   character(len=*), parameter :: option_meaning(n_options) = [character(len=40) :: &
     'kinematics', 'large-strain formulation', 'material model', 'mass matrix storage', 'anisotropy', &
@@ -130,8 +132,13 @@ contains
     if (m%kinematic == 'large' .and. seen(2) == 0) &
       call input_error(m%src%file, m%src%line, 2, "model '"//trim(m%nickname)//"' has 'kine_ large' but no " &
                        //"'form_' option (UpdtL or TotaL)")
+    if (m%material == 'neoh_' .and. (m%kinematic /= 'large' .or. m%formulation /= 'TotaL')) &
+      call input_error(m%src%file, merge(seen(3), m%src%line, seen(3) > 0), 23, "model '"//trim(m%nickname)// &
+                       "': 'mater neoh_' (neo-Hookean, finite strain) needs 'kine_ large' and 'form_ TotaL' "// &
+                       '(LMGC90 runs it so only)')
     ! Read so that LMGC90's decks run, but not what is computed: say so.
-    if (m%kinematic == 'large') call warn(m%src%file//':'//itoa(seen(1))//": model '"//trim(m%nickname)// &
+    if (m%kinematic == 'large' .and. .not. model_finite_strain(m)) call warn(m%src%file//':'//itoa(seen(1))// &
+      ": model '"//trim(m%nickname)// &
       "' asks for large kinematics (kine_ large, form_ "//trim(m%formulation)//"): Fracas runs it with small " &
       //'strain (linear strain about the reference configuration), which agrees with LMGC90 only while '// &
       'rotations and strains stay small (doc/mesh_mechanics.md)')

@@ -30,7 +30,8 @@ module fracas_output
   use fracas_elements, only: el_ngauss_gpv, el_name, el_vtk_type, el_vtk_order
   use fracas_cracks, only: crack_paths_t, cracks_paths, cracks_lengths, cracks_fragments, cracks_edge_beta, &
                            fragments_t, cracks_fragment_stats
-  use fracas_bulk, only: bulk_j2, gp_sxx, gp_szz, gp_ezz, gp_pxx, gp_pzz, gp_p, plane_stress
+  use fracas_bulk, only: bulk_j2, bulk_j2_finite, plane_names, gp_sxx, gp_szz, gp_exx, gp_eyy, gp_gxy, gp_ezz, &
+                         gp_pxx, gp_pzz, gp_p
   use fracas_results_h5, only: results_h5_t, results_open, results_write_bodies, results_write_help, &
                                results_write_snapshot, results_append_step, results_close, results_flush, &
                                results_group, results_last_snapshot, results_rename
@@ -944,7 +945,8 @@ contains
     type(scene_t), intent(in) :: sc
     type(gpv_record_t), allocatable :: recs(:)
     real(wp), allocatable :: gp(:, :)
-    integer :: b, e, g, ng, np, g0
+    integer :: b, e, g, ng, np, g0, law
+    real(wp) :: cp_shift(4), jac
     associate (ms => sc%meshes)
     allocate (gp(size(ms%gp, 1), size(ms%gp, 2)))
     call mailx_gauss_values(ms, gp)
@@ -957,12 +959,21 @@ contains
           r%kind = el_name(ms%el_kind(e))
           ng = ms%el_gp(e + 1) - ms%el_gp(e)
           np = el_ngauss_gpv(ms%el_kind(e))
-          allocate (r%values(merge(14, 8, ms%mats(ms%el_mat(e))%law == bulk_j2), np))
+          law = ms%mats(ms%el_bulk(e))%law
+          allocate (r%values(merge(14, 8, law == bulk_j2 .or. law == bulk_j2_finite), np))
+          ! finite-strain J2 keeps Cp^-1 - I: LMGC90 writes Cp^-1
+          cp_shift = 0.0_wp
+          if (law == bulk_j2_finite) cp_shift = [1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp]
           do g = 1, np
             g0 = ms%el_gp(e) + min(g, ng) - 1
             r%values(1:8, g) = gp(gp_sxx:gp_ezz, g0)
-            if (size(r%values, 1) == 14) r%values(9:14, g) = [gp(gp_pxx:gp_pzz, g0), gp(gp_p, g0), &
-                                                              von_mises(gp(gp_sxx:gp_szz, g0))]
+            ! finite-strain J2: LMGC90 prints the Kirchhoff von Mises stress, J times
+            ! the Cauchy one (J from the Green-Lagrange strain: J^2 = det C)
+            jac = 1.0_wp
+            if (law == bulk_j2_finite) jac = sqrt(((1.0_wp + 2.0_wp * gp(gp_exx, g0)) * &
+              (1.0_wp + 2.0_wp * gp(gp_eyy, g0)) - gp(gp_gxy, g0)**2) * (1.0_wp + 2.0_wp * gp(gp_ezz, g0)))
+            if (size(r%values, 1) == 14) r%values(9:14, g) = [gp(gp_pxx:gp_pzz, g0) + cp_shift, gp(gp_p, g0), &
+                                                              jac * von_mises(gp(gp_sxx:gp_szz, g0))]
           end do
         end associate
       end do
@@ -1122,7 +1133,7 @@ contains
         vtk(e) = int(el_vtk_type(m%el_kind(e)), ik)
       end do
       call results_group(o%h5, 'mesh', g)
-      call h5_write_attr(g, 'plane', merge('stress', 'strain', m%plane == plane_stress))
+      call h5_write_attr(g, 'plane', plane_names(m%plane))
       call h5_write_attr(g, 'gauss_point_fields', 'sxx syy sxy szz exx eyy gxy ezz pxx pyy pgxy pzz p')
       call h5_write_dataset(g, 'reference', m%ref)
       call h5_write_dataset(g, 'body_first_node', int(m%node_first, ik))

@@ -6,7 +6,7 @@ and compare Fracas's last step with LMGC90's DOF.LAST / Vloc_Rloc.LAST.
     lmgc90_example.py run CASE_DIR OUT [--set KEY=VALUE ...] [--deck DIR]
     lmgc90_example.py compare OUT CASE_DIR [--pairs-differ N] [--count-differ N] [--sum-rn REL]
                                          [--max-rn V] [--max-x V] [--mean-x REL] [--mean-y REL]
-                                         [--node B:N:DOF]
+                                         [--node B:N:DOF] [--gpv-stress REL] [--gpv-p ABS] [--gpv-vm REL]
     lmgc90_example.py points CASE_DIR OUT [--vmax V]
     lmgc90_example.py h5 OUT NAME=V1,V2,... [--rtol R] [--atol A]
 
@@ -14,7 +14,10 @@ and compare Fracas's last step with LMGC90's DOF.LAST / Vloc_Rloc.LAST.
 of both codes (their numbers, and at most N pairs in one code only), the summed normal
 reaction over the common contacts (or the largest one of ours, where the sum is ~0) and
 the mean node displacement of meshed bodies (each
-component relative to LMGC90's). `points` checks a mesh
+component relative to LMGC90's), and the meshes' Gauss-point values (GPV.LAST: the
+largest stress difference relative to the largest stress, the largest difference of the
+cumulative plastic strain p, 5th internal; the largest difference of the von Mises
+stress, 6th internal, relative to its largest). `points` checks a mesh
 deck's CLALp contacts: one per candidate point (LMGC90's rule), every point glued, no
 node faster than V (a scene at rest stays at rest). `h5` compares the first values
 of datasets of OUT/OUTBOX/fracas.h5 (e.g. bodies/mass) with closed-form values.
@@ -25,10 +28,15 @@ import subprocess
 import sys
 from pathlib import Path
 
+import re
+
 import numpy as np
 
 from fracas_tools.datbox import read_bodies  # noqa: E402
 from fracas_tools.outbox import read_dof_file, read_vloc_rloc  # noqa: E402
+
+
+NUM = re.compile(r"[-+]?\d*\.\d+[DE][-+]\d+")
 
 
 def run_control(run_json):
@@ -119,7 +127,48 @@ def cmd_compare(a):
         what = f"MAILx {body} node {node}" if node else f"RBDY2 {body}"
         ok &= report(f"X({dof}) of {what}", err <= unit,
                      f"{xo} ours, {xr} LMGC90's: {err:.2e} apart (one printed unit: {unit:.0e})")
+    if a.gpv_stress is not None or a.gpv_p is not None or a.gpv_vm is not None:
+        go, gr = gauss_values(last(ours_box, "GPV")), gauss_values(ref / "GPV.LAST")
+        same = go.keys() == gr.keys() and all(len(go[k]) == len(gr[k]) for k in gr)
+        ok &= report("Gauss points", same, f"{sum(len(v) for v in go.values())} lines ours, "
+                     f"{sum(len(v) for v in gr.values())} LMGC90's")
+        if same:
+            so = np.array([ln for v in go.values() for ln in v[0::3]])
+            sr = np.array([ln for v in gr.values() for ln in v[0::3]])
+            if a.gpv_stress is not None:
+                rel = np.abs(so - sr).max() / max(np.abs(sr).max(), 1e-300)
+                ok &= report("Gauss-point stress", rel <= a.gpv_stress, f"largest difference {rel:.2e} of the "
+                             f"largest stress {np.abs(sr).max():.4e} (tolerance {a.gpv_stress:g})")
+            if a.gpv_p is not None:
+                po = np.array([ln[4] for v in go.values() for ln in v[2::3]])
+                pr = np.array([ln[4] for v in gr.values() for ln in v[2::3]])
+                d = np.abs(po - pr).max()
+                ok &= report("cumulative plastic strain p", d <= a.gpv_p, f"largest difference {d:.2e} "
+                             f"(largest p {pr.max():.4f}, mean {po.mean():.6f} ours, {pr.mean():.6f} LMGC90's; "
+                             f"tolerance {a.gpv_p:g})")
+            if a.gpv_vm is not None:
+                vo = np.array([ln[5] for v in go.values() for ln in v[2::3]])
+                vr = np.array([ln[5] for v in gr.values() for ln in v[2::3]])
+                rel = np.abs(vo - vr).max() / max(vr.max(), 1e-300)
+                ok &= report("von Mises stress", rel <= a.gpv_vm, f"largest difference {rel:.2e} of the largest "
+                             f"{vr.max():.4e} (tolerance {a.gpv_vm:g})")
     return 0 if ok else 1
+
+
+def gauss_values(path):
+    """GPV file: {(body, element): array of its Gauss-point lines} (stress, strain,
+    internals for J2 elements: 3 lines per point), values as printed."""
+    out, key, body = {}, None, 0
+    lines = Path(path).read_text().splitlines()
+    for k, ln in enumerate(lines):
+        if ln.startswith(" MAILx"):
+            body = int(ln.split()[1])
+        elif ln.startswith("$blmty") and k + 1 < len(lines):
+            key = (body, int(lines[k + 1].split()[1]))
+            out[key] = []
+        elif key and ln.strip() and not ln.startswith(("$", " MECAx", " Q4", " T3", " T6", " Q8", "!")):
+            out[key].append([float(v.replace("D", "E")) for v in NUM.findall(ln)])
+    return out
 
 
 def node_x(path, body, node):
@@ -184,6 +233,9 @@ def main(argv=None):
     c.add_argument("--mean-y", type=float)
     c.add_argument("--node", action="append", metavar="BODY:NODE:DOF",
                    help="X(DOF) of this MAILx node (NODE 0: of rigid body BODY), to the printed digit")
+    c.add_argument("--gpv-stress", type=float, help="largest Gauss-point stress difference / largest stress")
+    c.add_argument("--gpv-p", type=float, help="largest difference of p (cumulative plastic strain)")
+    c.add_argument("--gpv-vm", type=float, help="largest von Mises difference / largest von Mises")
     q = sub.add_parser("points")
     q.add_argument("case"); q.add_argument("out")
     q.add_argument("--vmax", type=float, default=1e-9)

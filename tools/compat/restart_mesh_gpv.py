@@ -6,12 +6,18 @@ DOF.INI/GPV.INI; the restarted run must continue the plastic state.
 usage: restart_mesh_gpv.py FRACAS DECK_DIR RUN_CONTROL WORK_DIR [--no-gpv]
 (--no-gpv leaves GPV.INI out: the plastic state is lost; then the check passes only when
 fracas warns that it is lost and the results do differ from the uninterrupted run, or
-the run stops because they do: from the elastic state the bar's Newton loop diverges
-near step 100 and the state guard stops the run at step 153, a node at 2e15 m/s.)
+the run stops because they do: with finite-strain J2 (the deck's kine_ large Q4P0x) an
+element of the bar turns inside out at step 37 (the run stops naming it); with small
+strain its Newton loop diverged near step 100 and the state guard stopped the run at
+step 153.)
 
 References: the uninterrupted run. Tolerances: the restart reads values printed with 7
-digits, so node displacements agree within 1e-6 relative and the cumulative plastic
-strain p of every Gauss point within 1e-5 relative at step 200.
+digits; the plastic state of finite-strain J2 is printed as LMGC90 prints it, Cp^-1,
+whose entries near 1 carry the plastic strain (about 2e-3 here) to 5e-8 absolute, 2.5e-5
+relative: node displacements agree within 2e-5 relative (measured 6.9e-6) and the
+cumulative plastic strain p of every Gauss point within 2e-4 relative (measured 6.6e-5)
+at step 200. (With the small-strain law, which prints the plastic strain itself, they
+agreed within 1e-6 and 1e-5.)
 """
 import re
 import shutil
@@ -62,7 +68,8 @@ def main():
     err, status = run(fracas, case, cmd, 140, work / "second", check=with_gpv)
     warned = "GPV.INI gives no Gauss-point values" in err
     if status != 0:
-        stopped = status == 1 and re.search(r"step \d+ \(t=.*\): MAILx body 1 ran away", err) is not None
+        stopped = status == 1 and re.search(r"step \d+ \(t=.*\): MAILx body 1(?: ran away|: element \d+ turned "
+                                            r"inside out)", err) is not None
         print(f"{'ok  ' if warned else 'FAIL'} without GPV.INI fracas warns that the plastic state is lost")
         print(f"{'ok  ' if stopped else 'FAIL'} the restarted run stopped by the state guard (exit {status})")
         return 0 if warned and stopped else 1
@@ -73,9 +80,9 @@ def main():
     p_whole = p_values(work / "whole" / "OUTBOX" / "GPV.OUT.1")
     p_rest = p_values(work / "second" / "OUTBOX" / "GPV.OUT.1")
     dp = max(abs(a - b) for a, b in zip(p_whole, p_rest)) / max(p_whole)
-    ok_x, ok_p = dx <= 1e-6 and len(x_whole) == len(x_rest), dp <= 1e-5 and len(p_whole) == len(p_rest) > 0
-    print(f"{'ok  ' if ok_x else 'FAIL'} node displacements at step 200: max relative difference {dx:.2e} (1e-6)")
-    print(f"{'ok  ' if ok_p else 'FAIL'} cumulative plastic strain p at step 200: max relative difference {dp:.2e} (1e-5),"
+    ok_x, ok_p = dx <= 2e-5 and len(x_whole) == len(x_rest), dp <= 2e-4 and len(p_whole) == len(p_rest) > 0
+    print(f"{'ok  ' if ok_x else 'FAIL'} node displacements at step 200: max relative difference {dx:.2e} (2e-5)")
+    print(f"{'ok  ' if ok_p else 'FAIL'} cumulative plastic strain p at step 200: max relative difference {dp:.2e} (2e-4),"
           f" {len(p_whole)} Gauss points")
     if not with_gpv:
         print(f"{'ok  ' if warned else 'FAIL'} without GPV.INI fracas warns that the plastic state is lost")

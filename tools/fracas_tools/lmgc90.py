@@ -42,7 +42,11 @@ LMGC90_NAMES = {
     "gs_it2": "nlgs_max_checks",
     "freq_write": "output_dof_every",
     "freq_display": "output_vtk_every",
+    "mhyp": "plane",
 }
+
+#: LMGC90's modelling hypothesis (SetDimension(2, mhyp)) -> COMMAND.DAT 'plane'
+MHYP_PLANE = {1: "strain", 2: "stress", 3: "axisym"}
 
 
 def run_control(**lmgc90):
@@ -57,6 +61,11 @@ def run_control(**lmgc90):
             raise ValueError(f"unknown LMGC90 setting {name!r}; known: {', '.join(LMGC90_NAMES)}")
         if name == "norm":
             value = str(value).strip()
+        if name == "mhyp":
+            if value not in MHYP_PLANE:
+                raise ValueError(f"SetDimension's modelling hypothesis {value!r} is not one Fracas runs "
+                                 "(1 plane strain, 2 plane stress, 3 axisymmetry)")
+            value = MHYP_PLANE[value]
         rc.set(**{LMGC90_NAMES[name]: value})
     rc.check()
     return rc
@@ -156,7 +165,8 @@ def read_run_script(path):
     assignments of constant expressions (``dt = 1.e-3``, ``gs_it1, gs_it2 = 50, 400``,
     ``nb_steps = int(t_final / dt)``), the arguments of ``ExSolver`` (which win over
     variables of the same meaning), ``TimeEvolution_SetTimeStep``, ``Integrator_InitTheta``,
-    ``WriteOut``, the length of the ``range`` of the time loop (the loop that calls
+    ``WriteOut``, ``SetDimension``'s modelling hypothesis (``mhyp``), the length of the
+    ``range`` of the time loop (the loop that calls
     ``IncrementStep``: it is what LMGC90 runs) or the steps of dt a loop
     ``while TimeEvolution_GetTime() < t_final`` makes, ``nlgs_SetWithQuickScramble`` (key
     ``quickscramble``). Returns a :class:`ScriptReading`; what could not be read and the
@@ -211,6 +221,7 @@ def read_run_script(path):
     from_call("TimeEvolution_SetTimeStep", "dt")
     from_call("Integrator_InitTheta", "theta")
     from_call("WriteOut", "freq_write")
+    from_call("SetDimension", "mhyp", 1)
     for k, name in enumerate(EXSOLVER_ARGS):
         if name != "stype":
             from_call("ExSolver", name, k)

@@ -617,7 +617,7 @@ COMMAND_KEYWORDS = {
     "crack_step_limit": float,
     "crack_step_cuts": int,
     # meshed bodies
-    "plane": ("strain", "stress"),
+    "plane": ("strain", "stress", "axisym"),
     "newton_tolerance": float,
     "newton_max_iterations": int,
     "linear_solver": ("auto", "dense", "cholmod"),

@@ -53,6 +53,19 @@ def rect_grid(nx, ny, lx, ly, x0=0.0, y0=0.0):
     return np.array([[x, y] for y in ys for x in xs])
 
 
+def distorted_grid(n, size, seed, amplitude):
+    """rect_grid(n, n, size, size) with its interior nodes moved at random (seeded) by up
+    to amplitude x the cell size, coordinates rounded to 1e-4 (the deck's 8-digit fields
+    then hold them exactly)."""
+    x = rect_grid(n, n, size, size)
+    rng = np.random.default_rng(seed)
+    h = size / n
+    for j in range(1, n):
+        for i in range(1, n):
+            x[node_id(i, j, n)] += rng.uniform(-amplitude, amplitude, 2) * h
+    return np.round(x, 4)
+
+
 def node_id(i, j, nx):
     return j * (nx + 1) + i
 

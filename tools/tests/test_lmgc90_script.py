@@ -66,3 +66,15 @@ def test_command_says_what_it_did_not_read(tmp_path):
     for line in ("number_of_steps 250", "nlgs_sweeps_per_check 33", "nlgs_max_checks 101", "nlgs_order shuffled",
                  "! not in Fracas (the mechanics alone is run): periodic boundaries"):
         assert line in text, (line, text)
+
+
+def test_modelling_hypothesis(tmp_path):
+    # SetDimension(dim, mhyp): 1 plane strain, 2 plane stress, 3 axisymmetry (LMGC90's
+    # taylor example runs axisymmetric: without it, its bar spreads 2.4 times too far)
+    from fracas_tools.lmgc90 import run_control
+    p = tmp_path / "command.py"
+    p.write_text("from pylmgc90 import chipy\ndim = 2\nmhyp = 3\nchipy.SetDimension(dim, mhyp)\n"
+                 "dt = 1e-7\nchipy.TimeEvolution_SetTimeStep(dt)\nfor k in range(10):\n    chipy.IncrementStep()\n")
+    r = read_run_script(p)
+    assert r["mhyp"] == 3
+    assert "plane axisym" in "\n".join(run_control(**r).lines())

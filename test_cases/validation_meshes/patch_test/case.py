@@ -13,7 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from fracas_tools.valmesh import Case, node_id, one_based, quads, rect_grid, triangles  # noqa: E402
+from fracas_tools import valmesh  # noqa: E402
+from fracas_tools.valmesh import Case, one_based, quads, triangles  # noqa: E402
 from fracas_tools.valmesh import Checker, args, run_fracas  # noqa: E402
 from fracas_tools.outbox import read_gpv  # noqa: E402
 
@@ -25,15 +26,9 @@ STATIC_H = 1.0e3
 
 
 def distorted_grid(seed):
-    x = rect_grid(N, N, SIZE, SIZE)
-    rng = np.random.default_rng(seed)
-    h = SIZE / N
-    for j in range(1, N):
-        for i in range(1, N):
-            x[node_id(i, j, N)] += rng.uniform(-0.3, 0.3, 2) * h
     # Coordinates on a 1e-4 grid: the affine data L x then has few digits and is
     # written exactly in the deck's 8-digit fields (DOF.INI, DRV_DOF.DAT).
-    return np.round(x, 4)
+    return valmesh.distorted_grid(N, SIZE, seed, 0.3)
 
 
 def exact_stress(eps, plane):
