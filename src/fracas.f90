@@ -29,6 +29,7 @@ program fracas
   type(step_report_t) :: rep
   type(status_t) :: status
   integer :: i, nargs, nsteps, istep, first_step, every, unconverged, late, hdf5_every, first_unconverged
+  integer :: restart_every
   integer :: restart_step, vtk_frames, outbox_writes
   integer(int64) :: total_sweeps
   real(wp) :: late_max
@@ -148,6 +149,8 @@ contains
     if (every <= 0) every = max(1, nsteps / 20)
     hdf5_every = deck%run%output_hdf5_every
     if (hdf5_every < 0) hdf5_every = max(1, nsteps / 100)   ! not given: about 100 snapshots
+    restart_every = deck%run%output_restart_every
+    if (restart_every < 0) restart_every = hdf5_every         ! not given: with every snapshot
     total_sweeps = 0; unconverged = 0; worst_residual = 0.0_wp; late = 0; late_max = 0.0_wp
     first_unconverged = 0
     call clocks(t0, cpu0)
@@ -168,8 +171,8 @@ contains
         call output_vtk(out, sc)
       if (every_n(deck%run%output_dof_every) .or. (deck%run%output_dof_every == 0 .and. istep == nsteps)) &
         call output_outbox(out, sc)
-      ! A restart point with every snapshot (which flushes the file) and at the last step.
-      if (every_n(hdf5_every) .or. istep == nsteps) call restart_save(out%h5, sc, out%n_vtk, out%n_out, &
+      ! A restart point (which flushes the file) every restart_every steps and at the last step.
+      if (every_n(restart_every) .or. istep == nsteps) call restart_save(out%h5, sc, out%n_vtk, out%n_out, &
                                                                                postpro_sums(out%pp))
       if (every_n(hdf5_every)) call output_snapshot(out, sc)
       if (.not. (rep%nlgs%converged .and. rep%newton_converged)) call not_converged()
