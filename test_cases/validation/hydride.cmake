@@ -6,7 +6,7 @@
 set(_hp ${CMAKE_CURRENT_SOURCE_DIR}/hydrided_plate)
 foreach(bonding weak strong)
   add_test(NAME validation.hydrided_plate.${bonding}.run
-           COMMAND ${FRACAS_BIN} -q --overwrite --output ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/${bonding}
+           COMMAND ${FRACAS_BIN} -q --overwrite ${FRACAS_NO_RESTARTS} --output ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/${bonding}
                    ${_hp}/${bonding})
   set_tests_properties(validation.hydrided_plate.${bonding}.run PROPERTIES
                        FIXTURES_SETUP validation_hydrided_plate LABELS "medium;validation;hydride")
