@@ -197,14 +197,17 @@ contains
     if (late > 0) then
       block
         character(len=300) :: msg
-        write (msg, '(i0,a,es9.2,a)') late, ' contacts were first detected already overlapping (up to ', late_max, &
-          ' m): bodies move more than the alert distance in one step; '
-        ! Exploded meshes: a wider alert glues wrong pairs (doc/fracture.md section 1).
+        write (msg, '(i0,a,es9.2,a)') late, ' contacts were first detected already overlapping (up to ', late_max, ' m)'
+        ! Exploded meshes: a wider alert glues wrong pairs (doc/fracture.md section 1); their late
+        ! contacts are mostly points turning around a shared corner (doc/hydrided_zircaloy.md section 1).
         if (sc%meshes%n > 0) then
-          call warn(trim(msg)//' lower the time step (or raise the alert distance of rigid bodies; the alert '// &
+          call warn(trim(msg)//': in an exploded mesh mostly candidate points of an opening interface that turn '// &
+                    'around a corner into the range of a neighbouring element''s edge (doc/hydrided_zircaloy.md '// &
+                    'section 1); if the overlap is not small against the elements, lower the time step (the alert '// &
                     'of exploded meshes stays below fracas_tools.cohesive.safe_alert, doc/fracture.md section 1)')
         else
-          call warn(trim(msg)//' raise the alert distance or lower the time step')
+          call warn(trim(msg)//': bodies move more than the alert distance in one step; raise the alert '// &
+                    'distance or lower the time step')
         end if
       end block
     end if

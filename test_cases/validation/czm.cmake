@@ -8,7 +8,7 @@ function(fracas_czm_case name deck_dir check_script label)
   add_test(NAME validation.czm_${name}.run
            COMMAND ${FRACAS_BIN} -q --overwrite ${FRACAS_NO_RESTARTS} ${czm_run_args} --output ${out} ${deck_dir})
   add_test(NAME validation.czm_${name}.check
-           COMMAND ${FRACAS_PYTHON} ${check_script} ${out} ${ARGN})
+           COMMAND ${FRACAS_CLEAN_AFTER_PASS} ${out} -- ${FRACAS_PYTHON} ${check_script} ${out} ${ARGN})
   set_tests_properties(validation.czm_${name}.run PROPERTIES
                        FIXTURES_SETUP validation_czm_${name} LABELS "${label};validation;czm")
   set_tests_properties(validation.czm_${name}.check PROPERTIES
@@ -74,7 +74,8 @@ foreach(mode I II)
              COMMAND ${FRACAS_PYTHON} ${_czm}/czm_mode_I/gen.py --mesh ${out} ${law} ${flag})
     add_test(NAME validation.${name}.run COMMAND ${FRACAS_BIN} -q --overwrite ${FRACAS_NO_RESTARTS} ${out})
     add_test(NAME validation.${name}.check
-             COMMAND ${FRACAS_PYTHON} ${_czm}/czm_mode_I/check.py ${out} ${law} --mesh ${flag})
+             COMMAND ${FRACAS_CLEAN_AFTER_PASS} ${out} --
+                     ${FRACAS_PYTHON} ${_czm}/czm_mode_I/check.py ${out} ${law} --mesh ${flag})
     set_tests_properties(validation.${name}.gen PROPERTIES
                          FIXTURES_SETUP ${name}_deck LABELS "quick;validation;czm")
     set_tests_properties(validation.${name}.run PROPERTIES

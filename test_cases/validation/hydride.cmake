@@ -12,7 +12,9 @@ foreach(bonding weak strong)
                        FIXTURES_SETUP validation_hydrided_plate LABELS "medium;validation;hydride")
 endforeach()
 add_test(NAME validation.hydrided_plate.check
-         COMMAND ${FRACAS_PYTHON} ${_hp}/check.py ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/weak
+         COMMAND ${FRACAS_CLEAN_AFTER_PASS} ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/weak
+                 ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/strong --
+                 ${FRACAS_PYTHON} ${_hp}/check.py ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/weak
                  ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/strong)
 set_tests_properties(validation.hydrided_plate.check PROPERTIES
                      FIXTURES_REQUIRED validation_hydrided_plate LABELS "quick;validation;hydride")
