@@ -186,6 +186,9 @@ module fracas_deck
     character(len=8) :: output_vtk_disks = 'polygons'    !< 'polygons' (filled, as opened) | 'points' (with a radius)
     character(len=6) :: output_vtk_precision = 'single'  !< reals of the .vtu: 'single' | 'double'
     integer :: output_hdf5_every = -1    !< snapshot in fracas.h5 every n steps (0: none; -1: about 100 a run)
+    !> restart point in fracas.h5 every n steps, and at the last step (0: the last step only;
+    !> -1: with every snapshot)
+    integer :: output_restart_every = -1
     character(len=4) :: nlgs_unconverged = 'warn'  !< a step at the sweep limit: 'warn' | 'fail' (exit 3 at the end) | 'stop'
     integer :: progress_every = 0        !< progress line every n steps (0: about 20 lines a run)
     ! Meshed bodies (see doc/input_reference.md)

@@ -35,9 +35,10 @@ module fracas_h5
                   h5tis_variable_str_f, &
                   h5pcreate_f, h5pclose_f, h5pset_chunk_f, h5pset_deflate_f, &
                   h5pset_link_creation_order_f, h5pset_attr_creation_order_f, &
+                  h5pset_link_phase_change_f, &
                   H5P_DATASET_CREATE_F, H5P_GROUP_CREATE_F, H5P_FILE_CREATE_F, H5P_DEFAULT_F, &
                   H5P_CRT_ORDER_TRACKED_F, H5P_CRT_ORDER_INDEXED_F, &
-                  h5lexists_f, h5ldelete_f, h5eset_auto_f
+                  h5lexists_f, h5ldelete_f, h5eset_auto_f, h5iget_name_f
   use fracas_kinds, only: wp, ik
   use fracas_strings, only: itoa
   use fracas_errors, only: fatal, warn, error_exit_running
@@ -51,6 +52,7 @@ module fracas_h5
   public :: h5_write_attr, h5_read_attr, h5_has_attr
   public :: h5_write_dataset, h5_read_dataset, h5_dataset_dims
   public :: h5_create_series, h5_open_series, h5_append, h5_close_series
+  public :: h5_dataset_hook, h5_set_dataset_hook
 
   !> An extendible, chunked 1-D dataset kept open for appends.
   type :: h5_series_t
@@ -94,6 +96,19 @@ module fracas_h5
       type(c_ptr), value :: s
     end function c_strlen
   end interface
+
+  !> Called on every dataset this module creates, while it is open, with its path in
+  !> the file without the leading '/' (fracas_h5_describe sets its units and description:
+  !> attributes written at once sit in the dataset's header; added at the end of a run
+  !> they take a second header block each, ~30 % of a file of small snapshots, and time).
+  abstract interface
+    subroutine h5_dataset_hook(dset, path)
+      import :: hid_t
+      integer(hid_t), intent(in) :: dset
+      character(len=*), intent(in) :: path
+    end subroutine h5_dataset_hook
+  end interface
+  procedure(h5_dataset_hook), pointer :: dataset_hook => null()
 
   logical :: initialised = .false.
   !> The file created or opened last (a run has one open at a time): errors name it.
@@ -270,6 +285,10 @@ contains
     call check(err, 'link creation order for '//what)
     call h5pset_attr_creation_order_f(plist, ior(H5P_CRT_ORDER_TRACKED_F, H5P_CRT_ORDER_INDEXED_F), err)
     call check(err, 'attribute creation order for '//what)
+    ! Links kept in the group's header up to 32 (HDF5's default: 8, then a heap and two
+    ! B-trees of about 2 kB): a snapshot's groups hold 10 to 30 datasets.
+    call h5pset_link_phase_change_f(plist, 32, 24, err)
+    call check(err, 'link storage for '//what)
   end subroutine track_order
 
   !> True if the link PATH (e.g. 'snapshots/000001/bodies/X') exists under loc.
@@ -560,6 +579,32 @@ contains
 
   ! ================================================================ datasets
 
+  !> Set (or with no argument, clear) the hook called on every dataset created.
+  subroutine h5_set_dataset_hook(hook)
+    procedure(h5_dataset_hook), optional :: hook
+    dataset_hook => null()
+    if (present(hook)) dataset_hook => hook
+  end subroutine h5_set_dataset_hook
+
+  subroutine created(dset)
+    integer(hid_t), intent(in) :: dset
+    character(len=:), allocatable :: path
+    character(len=1) :: probe
+    integer(size_t) :: n
+    integer :: err
+    if (.not. associated(dataset_hook)) return
+    call h5iget_name_f(dset, probe, 1_size_t, n, err)     ! the length first
+    call check(err, 'name of a new dataset')
+    allocate (character(len=n + 1) :: path)
+    call h5iget_name_f(dset, path, len(path, kind=size_t), n, err)
+    call check(err, 'name of a new dataset')
+    if (path(1:1) == '/') then
+      call dataset_hook(dset, path(2:n))
+    else
+      call dataset_hook(dset, path(1:n))
+    end if
+  end subroutine created
+
   !> Create dataset NAME of the given type and Fortran-order dims, and write it
   !> in one call from ptr. compress > 0: chunked, deflate level compress.
   subroutine put_dataset(loc, name, htype, rank, dims, ptr, compress)
@@ -590,6 +635,7 @@ contains
     end if
     call h5dcreate_f(loc, name, htype, space, dset, err, dcpl_id=dcpl)
     call check(err, 'cannot create dataset '//name)
+    call created(dset)
     if (product(dims) > 0) then
       call h5dwrite_f(dset, htype, ptr, err)
       call check(err, 'cannot write dataset '//name)
@@ -928,6 +974,7 @@ contains
     call check(err, 'chunking of series '//name)
     call h5dcreate_f(loc, name, htype, space, s%dset, err, dcpl_id=dcpl)
     call check(err, 'cannot create series '//name)
+    call created(s%dset)
     call h5pclose_f(dcpl, err)
     call h5sclose_f(space, err)
     s%n = 0

@@ -1,17 +1,16 @@
 !> Units and a one-line description on every dataset of a results file.
-!> h5_describe walks the file and gives each dataset that has no `description`
-!> attribute yet the attributes `units` and `description` of its entry in the
-!> table below (found by its path with every number replaced by N, e.g.
+!> h5_describe_dataset, fracas_h5's dataset hook while a results file is written,
+!> gives each dataset as it is created the attributes `units` and `description` of
+!> its entry in the table below (found by its path with every number replaced by N, e.g.
 !> snapshots/N/contacts/gap). Units name the quantity in the deck's units
 !> (the root attribute `units`): length, time, mass, force, energy, ...; '1'
 !> is dimensionless, '-' an index, id, flag or name; 's' wall or CPU seconds.
 module fracas_h5_describe
-  use hdf5, only: hid_t, hsize_t, size_t, h5gget_info_f, h5lget_name_by_idx_f, h5oopen_f, h5oclose_f, &
-                  h5iget_type_f, H5I_GROUP_F, H5I_DATASET_F, H5_INDEX_NAME_F, H5_ITER_INC_F
-  use fracas_h5, only: h5_write_attr, h5_has_attr
+  use hdf5, only: hid_t
+  use fracas_h5, only: h5_write_attr
   implicit none
   private
-  public :: h5_describe, dataset_info
+  public :: h5_describe_dataset, dataset_info
 
   character(len=*), parameter :: sep = '|'
   !> 'path|units|description' (path: numbers as N; '*' ends a prefix match).
@@ -143,38 +142,16 @@ module fracas_h5_describe
 
 contains
 
-  !> Describe every dataset under group or file loc that has no description yet.
-  recursive subroutine h5_describe(loc, path)
-    integer(hid_t), intent(in) :: loc
-    character(len=*), intent(in), optional :: path
-    integer(hid_t) :: obj
-    integer(hsize_t) :: k
-    integer(size_t) :: nlen
-    integer :: storage, nlinks, maxc, err, itype
-    character(len=256) :: name
-    character(len=:), allocatable :: here, units, descr
-    here = ''
-    if (present(path)) here = path
-    call h5gget_info_f(loc, storage, nlinks, maxc, err)
-    if (err /= 0) return
-    do k = 0, int(nlinks - 1, hsize_t)
-      call h5lget_name_by_idx_f(loc, '.', H5_INDEX_NAME_F, H5_ITER_INC_F, k, name, err, size=nlen)
-      if (err /= 0) cycle
-      call h5oopen_f(loc, trim(name), obj, err)
-      if (err /= 0) cycle
-      call h5iget_type_f(obj, itype, err)
-      if (itype == H5I_GROUP_F) then
-        call h5_describe(obj, here//trim(name)//'/')
-      else if (itype == H5I_DATASET_F) then
-        if (.not. h5_has_attr(obj, 'description')) then
-          call dataset_info(here//trim(name), units, descr)
-          call h5_write_attr(obj, 'units', units)
-          call h5_write_attr(obj, 'description', descr)
-        end if
-      end if
-      call h5oclose_f(obj, err)
-    end do
-  end subroutine h5_describe
+  !> Write the attributes units and description of the table's entry for PATH on dset
+  !> (fracas_h5's dataset hook: called as each dataset is created).
+  subroutine h5_describe_dataset(dset, path)
+    integer(hid_t), intent(in) :: dset
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: units, descr
+    call dataset_info(path, units, descr)
+    call h5_write_attr(dset, 'units', units)
+    call h5_write_attr(dset, 'description', descr)
+  end subroutine h5_describe_dataset
 
   !> Units and description of the dataset at PATH ('units unknown' and
   !> 'undocumented' when the table has no entry: tools/tests/test_results.py fails then).

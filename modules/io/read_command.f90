@@ -11,14 +11,15 @@ module fracas_read_command
   private
   public :: read_command, apply_command_setting, check_run_control, command_keywords
 
-  integer, parameter :: n_keys = 29
+  integer, parameter :: n_keys = 30
   character(len=21), parameter :: keys(n_keys) = [character(len=21) :: &
     'time_step', 'number_of_steps', 'final_time', 'theta', 'detection_frequency', &
     'nlgs_check', 'nlgs_tolerance', 'nlgs_relaxation', 'nlgs_sweeps_per_check', &
     'nlgs_max_checks', 'nlgs_order', 'nlgs_seed', 'output_dof_every', 'output_vtk_every', &
     'output_hdf5_every', 'progress_every', 'plane', 'newton_tolerance', 'newton_max_iterations', &
     'linear_solver', 'nlgs_unconverged', 'output_vtk_disks', 'output_vtk_precision', 'driven_start', &
-    'detection_approach', 'nlgs_check_pass', 'cohesive_damage', 'crack_step_limit', 'crack_step_cuts']
+    'detection_approach', 'nlgs_check_pass', 'cohesive_damage', 'output_restart_every', 'crack_step_limit', &
+    'crack_step_cuts']
   integer, parameter :: k_time_step = 1, k_number_of_steps = 2, k_final_time = 3
   !> Largest NLGS sweep budget of a step (sweeps per check x checks).
   real(wp), parameter :: max_sweeps_per_step = 1.0e8_wp
@@ -248,6 +249,8 @@ contains
       run%output_vtk_every = int_min(0)
     case ('output_hdf5_every')
       run%output_hdf5_every = int_min(0)
+    case ('output_restart_every')
+      run%output_restart_every = int_min(0)
     case ('progress_every')
       run%progress_every = int_min(0)
     case ('plane')

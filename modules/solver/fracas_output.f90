@@ -16,7 +16,8 @@ module fracas_output
   use fracas_deck, only: dof_record_t, contact_record_t, deck_t, run_control_t, gpv_record_t
   use fracas_datbox_text, only: itoa, load_text, text_file_t
   use fracas_strings, only: rtoa
-  use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset, h5_close_group, h5_create_group
+  use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset, h5_close_group, h5_create_group, &
+                       h5_set_dataset_hook
   use fracas_vtk, only: vtu_t, vtu_begin, vtu_points, vtu_cells, vtu_vertex_cells, vtu_point_data, &
                         vtu_cell_data, vtu_end, pvd_t, pvd_init, pvd_add, vtk_poly_line, vtk_polygon, &
                         vtu_cells_fixed, vtk_line, vtu_field_strings
@@ -37,7 +38,7 @@ module fracas_output
                                results_group, results_last_snapshot, results_rename
   use fracas_postpro, only: postpro_t, postpro_prepare, postpro_open, postpro_step, postpro_flush, postpro_close, &
                             postpro_owns
-  use fracas_h5_describe, only: h5_describe
+  use fracas_h5_describe, only: h5_describe_dataset
   implicit none
   private
   public :: output_t, output_prepare, output_open, output_vtk, output_outbox, output_snapshot, output_series, &
@@ -154,6 +155,7 @@ contains
     ! Created as fracas.h5.part and renamed once its description is on disk: a
     ! fracas.h5 is valid from its first byte (a kill before leaves a .part,
     ! removed by the next run).
+    call h5_set_dataset_hook(h5_describe_dataset)   ! units and description on every dataset
     call results_open(o%h5, o%outbox//'/fracas.h5.part', overwrite, deck%case_dir, sc%h, sc%theta, series_names, &
                       version=version_string, integer_series=integer_series)
     o%h5_open = .true.
@@ -176,7 +178,6 @@ contains
     call results_write_help(o%h5, status_names, inter_names, law_names)
     call write_run_group(o, deck)
     call write_contactors_group(o, sc)
-    call h5_describe(o%h5%fid)
     call results_flush(o%h5)
     call results_rename(o%h5, o%outbox//'/fracas.h5')
     if (with_vtk) then
@@ -237,6 +238,11 @@ contains
       call put_s('output_vtk_disks', trim(r%output_vtk_disks))
       call put_s('output_vtk_precision', trim(r%output_vtk_precision))
       call put_i('output_hdf5_every', r%output_hdf5_every)
+      if (r%output_restart_every >= 0) then    ! -1, not given, is no keyword value
+        call put_i('output_restart_every', r%output_restart_every)
+      else
+        call h5_write_attr(g, 'output_restart_every', r%output_restart_every)
+      end if
       call put_i('progress_every', r%progress_every)
       call put_s('driven_start', trim(r%driven_start))
       call put_s('cohesive_damage', trim(r%cohesive_damage))
@@ -1267,7 +1273,7 @@ contains
     end if
     ! An error while closing stops the run; its clean-up closes again with
     ! complete = 0, going on past HDF5 errors (fracas_h5: check).
-    if (o%h5_open) call h5_describe(o%h5%fid)    ! units and description on every dataset
+    call h5_set_dataset_hook()
     if (o%h5_open) call results_close(o%h5, complete, end_reason)
     o%h5_open = .false.
     call postpro_close(o%pp)

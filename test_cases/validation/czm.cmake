@@ -6,9 +6,9 @@
 function(fracas_czm_case name deck_dir check_script label)
   set(out ${CMAKE_CURRENT_BINARY_DIR}/czm_${name})
   add_test(NAME validation.czm_${name}.run
-           COMMAND ${FRACAS_BIN} -q --overwrite ${czm_run_args} --output ${out} ${deck_dir})
+           COMMAND ${FRACAS_BIN} -q --overwrite ${FRACAS_NO_RESTARTS} ${czm_run_args} --output ${out} ${deck_dir})
   add_test(NAME validation.czm_${name}.check
-           COMMAND ${FRACAS_PYTHON} ${check_script} ${out} ${ARGN})
+           COMMAND ${FRACAS_CLEAN_AFTER_PASS} ${out} -- ${FRACAS_PYTHON} ${check_script} ${out} ${ARGN})
   set_tests_properties(validation.czm_${name}.run PROPERTIES
                        FIXTURES_SETUP validation_czm_${name} LABELS "${label};validation;czm")
   set_tests_properties(validation.czm_${name}.check PROPERTIES
@@ -78,9 +78,10 @@ foreach(mode I II)
     set(out ${CMAKE_CURRENT_BINARY_DIR}/${name})
     add_test(NAME validation.${name}.gen
              COMMAND ${FRACAS_PYTHON} ${_czm}/czm_mode_I/gen.py --mesh ${out} ${law} ${flag})
-    add_test(NAME validation.${name}.run COMMAND ${FRACAS_BIN} -q --overwrite ${out})
+    add_test(NAME validation.${name}.run COMMAND ${FRACAS_BIN} -q --overwrite ${FRACAS_NO_RESTARTS} ${out})
     add_test(NAME validation.${name}.check
-             COMMAND ${FRACAS_PYTHON} ${_czm}/czm_mode_I/check.py ${out} ${law} --mesh ${flag})
+             COMMAND ${FRACAS_CLEAN_AFTER_PASS} ${out} --
+                     ${FRACAS_PYTHON} ${_czm}/czm_mode_I/check.py ${out} ${law} --mesh ${flag})
     set_tests_properties(validation.${name}.gen PROPERTIES
                          FIXTURES_SETUP ${name}_deck LABELS "quick;validation;czm")
     set_tests_properties(validation.${name}.run PROPERTIES

@@ -6,13 +6,15 @@
 set(_hp ${CMAKE_CURRENT_SOURCE_DIR}/hydrided_plate)
 foreach(bonding weak strong)
   add_test(NAME validation.hydrided_plate.${bonding}.run
-           COMMAND ${FRACAS_BIN} -q --overwrite --output ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/${bonding}
+           COMMAND ${FRACAS_BIN} -q --overwrite ${FRACAS_NO_RESTARTS} --output ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/${bonding}
                    ${_hp}/${bonding})
   set_tests_properties(validation.hydrided_plate.${bonding}.run PROPERTIES
                        FIXTURES_SETUP validation_hydrided_plate LABELS "medium;validation;hydride")
 endforeach()
 add_test(NAME validation.hydrided_plate.check
-         COMMAND ${FRACAS_PYTHON} ${_hp}/check.py ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/weak
+         COMMAND ${FRACAS_CLEAN_AFTER_PASS} ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/weak
+                 ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/strong --
+                 ${FRACAS_PYTHON} ${_hp}/check.py ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/weak
                  ${CMAKE_CURRENT_BINARY_DIR}/hydrided_plate/strong)
 set_tests_properties(validation.hydrided_plate.check PROPERTIES
                      FIXTURES_REQUIRED validation_hydrided_plate LABELS "quick;validation;hydride")

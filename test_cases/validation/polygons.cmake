@@ -11,9 +11,9 @@ function(fracas_poly_case name case_dir)
   endif()
   set(out ${CMAKE_CURRENT_BINARY_DIR}/poly_${name})
   add_test(NAME validation.${name}.run
-           COMMAND ${FRACAS_BIN} -q --overwrite ${PC_RUN_ARGS} --output ${out} ${case_dir})
+           COMMAND ${FRACAS_BIN} -q --overwrite ${FRACAS_NO_RESTARTS} ${PC_RUN_ARGS} --output ${out} ${case_dir})
   add_test(NAME validation.${name}.check
-           COMMAND ${FRACAS_PYTHON} ${case_dir}/check.py ${out} ${PC_CHECK_ARGS})
+           COMMAND ${FRACAS_CLEAN_AFTER_PASS} ${out} -- ${FRACAS_PYTHON} ${case_dir}/check.py ${out} ${PC_CHECK_ARGS})
   set_tests_properties(validation.${name}.run PROPERTIES
                        FIXTURES_SETUP validation_${name} LABELS "${PC_LABEL};validation;polygons")
   set_tests_properties(validation.${name}.check PROPERTIES

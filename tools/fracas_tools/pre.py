@@ -609,6 +609,7 @@ COMMAND_KEYWORDS = {
     "output_dof_every": int,
     "output_vtk_every": int,
     "output_hdf5_every": int,
+    "output_restart_every": int,
     "progress_every": int,
     "nlgs_unconverged": ("warn", "fail", "stop"),
     "output_vtk_disks": ("points", "polygons"),
@@ -626,7 +627,8 @@ COMMAND_KEYWORDS = {
 _POSITIVE = {"time_step", "number_of_steps", "final_time", "detection_frequency", "crack_step_cuts",
              "nlgs_tolerance", "nlgs_sweeps_per_check", "nlgs_max_checks",
              "newton_tolerance", "newton_max_iterations"}
-_NONNEGATIVE = {"output_dof_every", "output_vtk_every", "output_hdf5_every", "progress_every", "crack_step_limit"}
+_NONNEGATIVE = {"output_dof_every", "output_vtk_every", "output_hdf5_every", "output_restart_every",
+                "progress_every", "crack_step_limit"}
 
 
 class RunControl:

@@ -1,6 +1,6 @@
 """Render one frame of a Fracas run (DISPLAY/fracas.pvd) to a PNG with ParaView, headless.
 
-    xvfb-run -a pvpython tools/paraview/render_frame.py RUN/DISPLAY/fracas.pvd frame.png \
+    xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvpython tools/paraview/render_frame.py RUN/DISPLAY/fracas.pvd frame.png \
         [--frame K | --time T] [--color ARRAY] [--size W H]
 
 The .pvd is opened as ParaView opens it (every piece in one reader, Surface): disks and
@@ -9,7 +9,8 @@ cell array (e.g. von_mises, body, velocity); pieces without that array keep the 
 colour. The crack paths of the frame (cracks piece) are drawn on top as red lines; the
 disks of a run written with `output_vtk_disks points` are drawn as filled circles of their
 radius (Point Gaussian). Background white, 2-D camera fitted to the scene.
-Debian: apt-get install python3-paraview xvfb (pvpython needs an X server: xvfb-run).
+Debian: apt-get install python3-paraview xvfb (pvpython needs an X server: xvfb-run; without
+-noreset pvpython's second connection can meet the server resetting: doc/output_layout.md §2).
 """
 import argparse
 import os

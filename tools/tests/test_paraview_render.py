@@ -1,11 +1,12 @@
 """ParaView shows what a run wrote (issue 22): one frame of the demo deck and one of a
-cracked notched plate rendered headless by tools/paraview/render_frame.py (pvpython under
-xvfb-run, as doc/output_layout.md says), then the PNG checked against the geometry of the
+cracked notched plate rendered headless by tools/paraview/render_frame.py (pvpython on a
+virtual X server, as doc/output_layout.md says), then the PNG checked against the geometry of the
 frame's .vtu files: the area ParaView filled equals the area of the disks, walls and mesh
 cells (disks drawn as 1-pixel dots would fill ~1 % of it), the cracks are drawn in red
 over the length fracas.h5 gives, and the mesh is coloured by von_mises.
-Skipped (with the reason) where pvpython or xvfb-run is not installed
+Skipped (with the reason) where pvpython or Xvfb is not installed
 (Debian: apt-get install python3-paraview xvfb)."""
+import os
 import shutil
 import subprocess
 import xml.etree.ElementTree as ET
@@ -16,9 +17,9 @@ import pytest
 
 from fracas_run import ROOT, run_example
 
-PVPYTHON, XVFB = shutil.which("pvpython"), shutil.which("xvfb-run")
-if not (PVPYTHON and XVFB):
-    pytest.skip("ParaView rendering: pvpython or xvfb-run not installed "
+PVPYTHON = shutil.which("pvpython")
+if not PVPYTHON:
+    pytest.skip("ParaView rendering: pvpython not installed "
                 "(Debian: apt-get install python3-paraview xvfb)", allow_module_level=True)
 vtkio = pytest.importorskip("vtkmodules.vtkIOXML")
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
@@ -27,15 +28,35 @@ plt = pytest.importorskip("matplotlib.pyplot")
 SIZE = (1000, 800)
 
 
-def render(pvd, png, *extra):
-    # xvfb-run -a can lose a race for a display number to another xvfb-run starting at
-    # the same moment (pvpython then aborts on a bad X connection): try again.
-    for _ in range(3):
-        p = subprocess.run([XVFB, "-a", "-s", "-screen 0 1280x1024x24", PVPYTHON,
-                            str(ROOT / "tools/paraview/render_frame.py"), str(pvd), str(png),
-                            "--size", *map(str, SIZE), *extra], capture_output=True, text=True, timeout=300)
-        if p.returncode == 0 or "X server" not in p.stderr:
-            break
+@pytest.fixture(scope="module")
+def display():
+    """A virtual X server of our own for the renders. Xvfb chooses a free display number
+    itself and tells it through -displayfd (`xvfb-run -a` guesses one from the lock files
+    in /tmp: two started at the same moment can take the same). -noreset: by default the
+    server resets when its last client disconnects, and pvpython connects twice: its second
+    connection, made during the reset, failed with 'bad X server connection' (measured:
+    every time without -noreset on a bare Xvfb; the intermittent failure of this test
+    under xvfb-run)."""
+    xvfb = shutil.which("Xvfb")
+    if xvfb is None:
+        pytest.skip("ParaView rendering: Xvfb not installed (Debian: apt-get install xvfb)")
+    rfd, wfd = os.pipe()
+    server = subprocess.Popen([xvfb, "-displayfd", str(wfd), "-screen", "0", "1280x1024x24", "-nolisten", "tcp",
+                               "-noreset"],
+                              pass_fds=(wfd,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    os.close(wfd)
+    with os.fdopen(rfd) as f:
+        number = f.readline().strip()       # written once the server accepts connections
+    assert number.isdigit(), f"Xvfb gave no display number (exit status {server.poll()})"
+    yield ":" + number
+    server.terminate()
+    server.wait(timeout=30)
+
+
+def render(display, pvd, png, *extra):
+    p = subprocess.run([PVPYTHON, str(ROOT / "tools/paraview/render_frame.py"), str(pvd), str(png),
+                        "--size", *map(str, SIZE), *extra], capture_output=True, text=True, timeout=300,
+                       env={**os.environ, "DISPLAY": display})
     assert p.returncode == 0, p.stdout + p.stderr
     img = plt.imread(png)[:, :, :3]
     assert img.shape[:2] == (SIZE[1], SIZE[0])
@@ -95,10 +116,10 @@ def demo(tmp_path_factory):
     return run_example(tmp_path_factory, "demo_deposit", "number_of_steps=200", "output_vtk_every=150")
 
 
-def test_demo_frame_disks_filled(demo, tmp_path):
+def test_demo_frame_disks_filled(demo, display, tmp_path):
     times = [float(d.get("timestep")) for d in ET.parse(demo / "DISPLAY/fracas.pvd").getroot().iter("DataSet")]
     assert sorted(set(times)) == pytest.approx([0.0, 0.15, 0.2])     # 0, step 150, the last step 200
-    img = render(demo / "DISPLAY/fracas.pvd", tmp_path / "demo.png")
+    img = render(display, demo / "DISPLAY/fracas.pvd", tmp_path / "demo.png")
     filled, expected, _ = filled_check(img, last_frame(demo))
     # Disks as 24-gons and the walls: ParaView fills what the cells cover (3 %: pixels
     # along the edges; measured 1.0 %; disks drawn as points would fill about 1 % of it).
@@ -112,8 +133,8 @@ def plate(tmp_path_factory):
     return run_example(tmp_path_factory, "notched_plate_impact", "number_of_steps=250", "output_vtk_every=100")
 
 
-def test_crack_frame(plate, tmp_path):
-    img = render(plate / "DISPLAY/fracas.pvd", tmp_path / "plate.png", "--color", "von_mises")
+def test_crack_frame(plate, display, tmp_path):
+    img = render(display, plate / "DISPLAY/fracas.pvd", tmp_path / "plate.png", "--color", "von_mises")
     pieces = last_frame(plate)
     filled, expected, m_per_px = filled_check(img, pieces)
     print(f"plate: {filled} pixels filled, {expected:.0f} expected")

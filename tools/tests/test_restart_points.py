@@ -97,3 +97,24 @@ def test_dissipated_energy_continues_across_a_restart(tmp_path):
     assert len(rows) == 60 and len(rest) == 20
     assert float(rows[39].split()[1]) > 0                   # something was dissipated before the restart
     assert rest == rows[40:]
+
+
+@pytest.mark.parametrize("every, points", [(None, [5, 10, 15, 20]), (0, [20]), (4, [4, 8, 12, 16, 20])])
+def test_restart_points_where_output_restart_every_says(tmp_path, every, points):
+    """Restart points come with every snapshot unless output_restart_every is given: then
+    every n steps, and always at the last step (0: there only). The snapshots are not
+    changed by it; a point written is one a run restarts from."""
+    deck = copy_deck("driven_evolution", tmp_path)
+    args = ["--set", "time_step=1e-3", "--set", "number_of_steps=20", "--set", "output_hdf5_every=5"]
+    if every is not None:
+        args += ["--set", f"output_restart_every={every}"]
+    p = run("-q", *args, "--output", tmp_path / "run", deck)
+    assert p.returncode == 0, p.stderr
+    with h5py.File(tmp_path / "run" / "OUTBOX" / "fracas.h5") as f:
+        assert sorted(int(k) for k in f["restart"]) == points
+        assert f["restart"].attrs["last"] == 20
+        assert list(f["snapshot_index/step"][:]) == [5, 10, 15, 20]
+        assert f["run"].attrs["output_restart_every"] == (-1 if every is None else every)
+    p = run("-q", *args, "--set", "number_of_steps=24", "--restart", tmp_path / "run" / "OUTBOX" / "fracas.h5",
+            "--restart-step", str(points[0]), "--output", tmp_path / "again", deck)
+    assert p.returncode == 0, p.stderr
