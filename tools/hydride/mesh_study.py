@@ -8,7 +8,7 @@ crack_step_limit 0.25, dt = 2e-10 s x h / 1 um). Prints the macro-crack shares p
 their mean and spread per bonding and size, and the seed-by-seed differences of the
 claim, and says which hold on every seed and both sizes.
 
-    build/release/bin/fracas-python tools/hydride/mesh_study.py WORK [--seeds 1 2 3] [--sizes 1e-6 0.7e-6] [--fracas BIN] [--json OUT]
+    build/release/bin/fracas-python tools/hydride/mesh_study.py WORK [--seeds 1 2 3] [--sizes 1e-6 0.7e-6] [--fracas BIN] [--json OUT] [--png OUT]
 
 Runs whose summary exists in WORK are reused. About 15 min of CPU for 3 seeds.
 """
@@ -60,6 +60,7 @@ def main():
     ap.add_argument("--sizes", type=float, nargs="+", default=[1e-6, 0.7e-6])
     ap.add_argument("--fracas", default=str(ROOT / "build" / "release" / "bin" / "fracas"))
     ap.add_argument("--json", default=None)
+    ap.add_argument("--png", default=None, help="shares per bonding and size, one dot per seed")
     a = ap.parse_args()
     work = Path(a.work)
     runs = [run_case(work, a.fracas, s, b, h) for h in a.sizes for s in a.seeds for b in ("weak", "strong")]
@@ -99,6 +100,35 @@ def main():
           f"HY_MA weak - strong > 0 on {int((d[:, 1] > 0).sum())} of {len(d)}")
     if a.json:
         Path(a.json).write_text(json.dumps(runs, indent=1) + "\n")
+    if a.png:
+        plot(runs, a.sizes, a.png)
+
+
+def plot(runs, sizes, png):
+    """Macro-crack shares per family: bars the mean over seeds, dots the seeds, lines
+    joining each seed's weak and strong runs (the claim is the difference on one mesh)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(FAMILIES), figsize=(3.4 * len(FAMILIES), 3.4), sharey=True)
+    for ax, fam in zip(axes, FAMILIES):
+        for i, h in enumerate(sizes):
+            for j, b in enumerate(("weak", "strong")):
+                vals = [100 * r["shares"].get(fam, 0.0) for r in runs if r["h"] == h and r["bonding"] == b]
+                ax.bar(3 * i + j, np.mean(vals), color=("C0" if b == "weak" else "C3"), alpha=0.5,
+                       label=b if i == 0 else None)
+            for s in sorted({r["seed"] for r in runs}):
+                pair = [100 * next(r for r in runs if r["h"] == h and r["seed"] == s and r["bonding"] == b)
+                        ["shares"].get(fam, 0.0) for b in ("weak", "strong")]
+                ax.plot([3 * i, 3 * i + 1], pair, "k.-", lw=0.6, ms=4)
+        ax.set_xticks([3 * i + 0.5 for i in range(len(sizes))])
+        ax.set_xticklabels([f"h {h * 1e6:g} um" for h in sizes])
+        ax.set_title(fam, fontsize=9)
+    axes[0].set_ylabel("share of the macro-crack (%)")
+    axes[0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    print(f"wrote {png}")
 
 
 if __name__ == "__main__":
