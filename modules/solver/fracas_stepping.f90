@@ -59,7 +59,9 @@ contains
       span = 2_i8**(ctl%max_cuts - level)
       last = pos + span == whole
       substep = sc%substep
-      call scene_capture(sc, start)
+      ! The state to come back to, unless the step cannot be cut any further.
+      if (level < ctl%max_cuts) call scene_capture(sc, start)
+      ctl%deepest = max(ctl%deepest, level)
       call set_time_step(sc, sc%h_step / real(2_i8**level, wp), status)
       if (failed(status)) return
       call scene_step(sc, sub, status, finishes_step=last)
@@ -110,7 +112,6 @@ contains
       r%solve_seconds = r%solve_seconds + s%solve_seconds
       r%velocity_seconds = r%velocity_seconds + s%velocity_seconds
       r%step_seconds = r%step_seconds + s%step_seconds
-      ctl%deepest = max(ctl%deepest, level)
     end subroutine add_work
 
     !> A kept sub-step: its end state is the step's so far.
