@@ -202,12 +202,13 @@ contains
   !> whose work over the step's jump is the law's own energy along it,
   !>   f (u1.C u1 - u0.C u0)/2 = psi(beta1, u1) - psi(beta0, u0) + dissipation,
   !> so that a crack costs its fracture energy whatever its opening per step; both
-  !> agree where damage starts, so f is continuous in u1. Kept in [0, beta0^k];
+  !> agree where damage starts, so f is continuous in u1. Kept in [beta1^k, beta0^k]
+  !> ([0, beta0^k] for a viscous MAC law);
   !> beta1^k where the step does not stretch the springs (u1.C u1 <= u0.C u0).
   pure real(wp) function czm_step_factor(p, beta0, beta1, u0, u1, h) result(f)
     type(czm_t), intent(in) :: p
     real(wp), intent(in) :: beta0, beta1, u0(2), u1(2), h
-    real(wp) :: work, den
+    real(wp) :: work, den, lo
     integer :: k
     k = czm_beta_power(p)
     f = beta0**k
@@ -219,7 +220,12 @@ contains
     end if
     work = czm_stored_energy(p, beta1, u1(1), u1(2)) - czm_stored_energy(p, beta0, u0(1), u0(2)) + &
            czm_step_dissipation(p, beta0, beta1, u1(1), u1(2), h)
-    f = min(beta0**k, max(0.0_wp, work / den))
+    ! A rate-independent law's factor falls from beta0^k to beta1^k along the step, so
+    ! its mean lies between them; the bracket also tames the quotient where the stretch
+    ! is round-off. A viscous MAC law damages at rest: its mean may fall below beta1^k.
+    lo = beta1**k
+    if (p%family == czm_mac .and. p%visco > 0.0_wp) lo = 0.0_wp
+    f = min(beta0**k, max(lo, work / den))
   end function czm_step_factor
   !> The opening over which a law softens in the mode of the jump (ut, un), the
   !> scale of crack_step_limit (doc/czm.md §9): from the end of its linear branch

@@ -26,7 +26,7 @@
 program test_czm_laws
   use fracas_kinds, only: wp
   use fracas_czm, only: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo, czm_beta_update, &
-                        czm_beta_power, czm_stored_energy, beta_broken
+                        czm_beta_power, czm_stored_energy, beta_broken, czm_step_factor
   use fracas_testing, only: check_close, check_true, test_finish
   implicit none
   integer, parameter :: opening = 1, sliding = 2
@@ -75,6 +75,7 @@ program test_czm_laws
   ! Irreversibility: up to 3 d0, down to 0, up to 5 d0 (mode I).
   d0 = sqrt(p%w / p%cn)
   call cycle_check(p, opening, d0, 'MAC')
+  call step_factor_bracket(p, d0, 'MAC')
 
   ! ------------------------------------------------------------------ MAC, b > 0
   ! Implicit Euler: beta_new = (b beta_old + h w)/(b + h Y) when beta_old Y > w.
@@ -122,6 +123,7 @@ program test_czm_laws
   call check_close('MP3 mode II peak / smax', peak / p%smax, 1.0_wp, 1e-12_wp)
   call check_close('MP3 mode II work / w', energy / p%w, 1.0_wp, 1e-9_wp)
   call cycle_check(p, opening, di, 'MP3')
+  call step_factor_bracket(p, di, 'MP3')
   ! cn /= ct (LMGC90's di is the mean compliance): mode I peak cn di,
   ! work cn di^2/2 + 2/3 cn di dk.
   p%ct = 3.0e11_wp
@@ -150,6 +152,7 @@ program test_czm_laws
   call check_close('MAL mode II work / G2', energy / p%g2, 1.0_wp, 1e-9_wp)
   call check_true('MAL: beta never grows', growth <= 0.0_wp)
   call cycle_check(p, sliding, (di + 0.3_wp * dk) / 3.0_wp, 'MAL')
+  call step_factor_bracket(p, p%s1 / p%cn, 'MAL')
 
   ! ------------------------------------------------------------------ TH
   p = czm_t(family=czm_th, cn=1.0e11_wp, ct=5.0e10_wp, s1=1.0e6_wp, s2=2.0e6_wp, g1=40.0_wp, g2=100.0_wp, &
@@ -172,6 +175,7 @@ program test_czm_laws
   call check_close('TH mode II work / G2', energy / p%g2, 1.0_wp, 1e-9_wp)
   call check_true('TH: beta never grows', growth <= 0.0_wp)
   call cycle_check(p, opening, p%s1 / p%cn, 'TH')
+  call step_factor_bracket(p, p%s1 / p%cn, 'TH')
 
   ! ------------------------------------------------------------------ EXPO
   p = czm_t(family=czm_expo, cn=1.0e11_wp, ct=5.0e10_wp, s1=1.0e6_wp, s2=2.0e6_wp, g1=40.0_wp, g2=100.0_wp, &
@@ -198,6 +202,7 @@ program test_czm_laws
   call check_close('EXPO mode II work / (G2 - eta (G2 - s2 di/2))', energy / ref, 1.0_wp, 1e-9_wp)
   call check_true('EXPO: beta never grows', growth <= 0.0_wp)
   call cycle_check(p, opening, p%s1 / p%cn, 'EXPO')
+  call step_factor_bracket(p, p%s1 / p%cn, 'EXPO')
   ! Once cut (d >= du, mode I) the interface stays broken even if closed again.
   di = p%s1 / p%cn
   phi = p%s1 / (p%g1 - 0.5_wp * p%s1 * di)
@@ -211,6 +216,40 @@ program test_czm_laws
   call test_finish()
 
 contains
+
+  !> The factor of a damaging step (czm_step_factor) is the mean of a traction factor
+  !> that falls from beta0^k to beta1^k along the step, so it lies between them, also
+  !> when the step's stretch is so small that its work / stretch quotient is round-off
+  !> (0/0 at zero motion: it gave values far outside, even 0). Openings 1.1 to 5 times
+  !> dref, directions from mode II to mode I, increments 0.1 to 1e-14 of the opening.
+  subroutine step_factor_bracket(p, dref, name)
+    type(czm_t), intent(in) :: p
+    real(wp), intent(in) :: dref
+    character(*), intent(in) :: name
+    real(wp), parameter :: scales(5) = [1.1_wp, 1.5_wp, 2.0_wp, 3.0_wp, 5.0_wp]
+    real(wp) :: a, u0(2), u1(2), b0, b1, f, worst
+    integer :: i, j, m, k, n
+    k = czm_beta_power(p)
+    worst = 0.0_wp
+    n = 0
+    do m = 1, size(scales)
+      do i = 0, 4
+        a = i * 0.125_wp * acos(-1.0_wp)
+        u0 = scales(m) * dref * [cos(a), sin(a)]
+        b0 = czm_beta_update(p, 1.0_wp, u0(1), u0(2), h)
+        do j = 1, 14
+          u1 = u0 * (1.0_wp + 10.0_wp**(-j))
+          b1 = czm_beta_update(p, b0, u1(1), u1(2), h)
+          if (.not. (b1 < b0 .and. b1 > 0.0_wp)) cycle
+          f = czm_step_factor(p, b0, b1, u0, u1, h)
+          worst = max(worst, (b1**k - f) / b0**k, (f - b0**k) / b0**k)
+          n = n + 1
+        end do
+      end do
+    end do
+    call check_true(name // ': damaging steps sampled for the step factor', n >= 50)
+    call check_close(name // ': step factor outside [beta1^k, beta0^k] by', worst, 0.0_wp, 0.0_wp)
+  end subroutine step_factor_bracket
 
   !> n + 1 evenly spaced points from a to b (a excluded when used after another segment
   !> is harmless: a repeated point adds no work).

@@ -426,8 +426,8 @@ class Law:
         """The factor f of the cohesive traction f C (u0 + u1)/2 of a step with damage
         solved within it (u0, u1: (ut, un) at the step's start and end): beta0^k while
         the step does not damage, else the value whose work over the step is the law's
-        energy change plus dissipation, in [0, beta0^k]; beta1^k where the springs are
-        not stretched (czm_step_factor)."""
+        energy change plus dissipation, in [beta1^k, beta0^k] ([0, beta0^k] for a viscous
+        MAC law); beta1^k where the springs are not stretched (czm_step_factor)."""
         f = beta0 ** self.k
         if beta1 >= beta0:
             return f
@@ -436,7 +436,10 @@ class Law:
             return beta1 ** self.k
         work = (self.stored_energy(beta1, u1[0], u1[1]) - self.stored_energy(beta0, u0[0], u0[1])
                 + self.step_dissipation(beta0, beta1, u1[0], u1[1], h))
-        return min(beta0 ** self.k, max(0.0, work / den))
+        # rate-independent: the mean of a factor falling from beta0^k to beta1^k lies
+        # between them; a viscous MAC law damages at rest and may fall below beta1^k
+        lo = 0.0 if self.family == "MAC" and self.b > 0.0 else beta1 ** self.k
+        return min(beta0 ** self.k, max(lo, work / den))
 
     @classmethod
     def of_deck(cls, law):
