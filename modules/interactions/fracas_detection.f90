@@ -544,6 +544,12 @@ contains
     ! of several neighbouring elements, and gluing it to all of them binds
     ! it at their initial gaps.
     integer, allocatable :: cl_kept(:)
+    ! A point that only reaches an antagonist past its polyline's end (within
+    ! the end tolerance) is kept there only if no antagonist has it over a
+    ! segment: LMGC90 takes no projection past a polyline's end, so at a joint
+    ! between two bricks the point goes to the brick it lies over.
+    logical, allocatable :: cl_beyond(:)
+    logical :: beyond
     ! At most two contacts per pair, one per segment (disk) or vertex (polygon) against a polyline.
     nmax = 0
     do p = 1, det%npairs
@@ -559,6 +565,7 @@ contains
     call contacts_reserve(c, nmax)
     c%n = 0
     allocate (cl_kept(t%n), source=0)
+    allocate (cl_beyond(t%n), source=.false.)
     do p = 1, det%npairs
       icd = det%pair_cd(p)
       ian = det%pair_an(p)
@@ -621,9 +628,16 @@ contains
         na = t%nodes(t%nfirst(icd)); nb = t%nodes(t%nfirst(icd) + 1)
         point = cl_point(t, icd, xn)
         call point_polyline(point, xn, t%nodes(t%nfirst(ian):t%nfirst(ian + 1) - 1), reach, alert, &
-                            edge_normal(xn(:, na), xn(:, nb)), found, seg, s, gap, normal)
-        if (found .and. cl_kept(icd) > 0) found = abs(gap) < abs(c%gap(cl_kept(icd)))
+                            edge_normal(xn(:, na), xn(:, nb)), found, seg, s, gap, normal, beyond)
+        if (found .and. cl_kept(icd) > 0) then
+          if (beyond .neqv. cl_beyond(icd)) then
+            found = .not. beyond
+          else
+            found = abs(gap) < abs(c%gap(cl_kept(icd)))
+          end if
+        end if
         if (found) then
+          cl_beyond(icd) = beyond
           point = point - gap * normal        ! on the antagonist, as LMGC90 reports it
           len = 0.5_wp * norm2(xn(:, nb) - xn(:, na))
           call mesh_side(1, na, nb, t%apab(icd))

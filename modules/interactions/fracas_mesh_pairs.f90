@@ -24,17 +24,20 @@ contains
   !> contact: in a mesh, points of one element lie behind the edges of its
   !> neighbours.
   !> Returns the segment, the projection parameter s in [0, 1] along it, the
-  !> gap and the segment's outward normal.
-  pure subroutine point_polyline(p, xn, nodes, reach, depth, cd_normal, found, seg, s, gap, normal)
+  !> gap and the segment's outward normal; beyond: p projects past the
+  !> segment's end (within end_tolerance), not onto it.
+  pure subroutine point_polyline(p, xn, nodes, reach, depth, cd_normal, found, seg, s, gap, normal, beyond)
     real(wp), intent(in) :: p(2), xn(:, :), reach, depth, cd_normal(2)
     integer, intent(in) :: nodes(:)
     logical, intent(out) :: found
     integer, intent(out) :: seg
     real(wp), intent(out) :: s, gap, normal(2)
+    logical, intent(out), optional :: beyond
     integer :: k
     real(wp) :: a(2), d(2), len2, sk, gk, nk(2), best
     found = .false.
     seg = 0; s = 0.0_wp; gap = 0.0_wp; normal = 0.0_wp
+    if (present(beyond)) beyond = .false.
     best = huge(1.0_wp)
     do k = 1, size(nodes) - 1
       a = xn(:, nodes(k))
@@ -54,6 +57,7 @@ contains
         s = min(1.0_wp, max(0.0_wp, sk))
         gap = gk
         normal = nk
+        if (present(beyond)) beyond = sk < 0.0_wp .or. sk > 1.0_wp
       end if
     end do
   end subroutine point_polyline

@@ -4,16 +4,22 @@ LMGC90's results in lmgc90/) with the settings LMGC90's own script passed (lmgc9
 and compare Fracas's last step with LMGC90's DOF.LAST / Vloc_Rloc.LAST.
 
     lmgc90_example.py run CASE_DIR OUT [--set KEY=VALUE ...] [--deck DIR]
-    lmgc90_example.py compare OUT CASE_DIR [--pairs-differ N] [--count-differ N] [--sum-rn REL]
+    lmgc90_example.py compare OUT CASE_DIR [--pairs-differ N] [--count-differ N] [--sum-rn REL] [--sum-rn-vertical REL] [--force-y INTER=REL]
+                                         [--gap-below G]
+                                         [--unordered]
                                          [--max-rn V] [--max-x V] [--mean-x REL] [--mean-y REL]
                                          [--node B:N:DOF] [--gpv-stress REL] [--gpv-p ABS] [--gpv-vm REL]
     lmgc90_example.py points CASE_DIR OUT [--vmax V]
     lmgc90_example.py h5 OUT NAME=V1,V2,... [--rtol R] [--atol A]
 
 `compare` checks the contacts (candidate body and contactor, antagonist body and contactor)
-of both codes (their numbers, and at most N pairs in one code only), the summed normal
-reaction over the common contacts (or the largest one of ours, where the sum is ~0) and
-the mean node displacement of meshed bodies (each
+of both codes (their numbers, and at most N pairs in one code only; with --gap-below G only
+the contacts whose gapTT is below G in each code; with --unordered a pair is the same
+whichever side is the candidate), the summed normal
+reaction over the common contacts (or the largest one of ours, where the sum is ~0), its
+vertical part rln |n_y| over all contacts (what bed joints carry under gravity), the
+vertical force one contact type carries (--force-y: the weight on a ground or a slab), and
+the mean node displacement of meshed bodies (of the rigid bodies when there is no mesh; each
 component relative to LMGC90's), and the meshes' Gauss-point values (GPV.LAST: the
 largest stress difference relative to the largest stress, the largest difference of the
 cumulative plastic strain p, 5th internal; the largest difference of the von Mises
@@ -68,15 +74,23 @@ def last(outbox, stem):
     return files[-1]
 
 
-def contacts(path):
+def contacts(path, gap_below=None, unordered=False):
+    """{(candidate body, contactor, antagonist body, contactor): its records}; unordered:
+    the two sides sorted (a pair is the same whichever is candidate)."""
     out = {}
     for r in read_vloc_rloc(path).records:
-        out.setdefault((r.icdbdy, r.icdtac, r.ianbdy, r.iantac), []).append(r)
+        if gap_below is None or r.gap < gap_below:
+            cd, an = (r.icdbdy, r.icdtac), (r.ianbdy, r.iantac)
+            out.setdefault(tuple(sorted((cd, an))) if unordered else cd + an, []).append(r)
     return out
 
 
 def mesh_x(path):
-    return np.concatenate([r.x for r in read_dof_file(path).records if r.model == "MAILx"] or [np.zeros((0, 2))])
+    """Node displacements of the meshed bodies, or (no mesh) the rigid bodies' translations."""
+    recs = read_dof_file(path).records
+    if any(r.model == "MAILx" for r in recs):
+        return np.concatenate([r.x for r in recs if r.model == "MAILx"])
+    return np.array([r.x[:2] for r in recs if r.model == "RBDY2"]).reshape(-1, 2)
 
 
 def report(name, ok, detail):
@@ -86,10 +100,12 @@ def report(name, ok, detail):
 
 def cmd_compare(a):
     ours_box, ref = Path(a.out) / "OUTBOX", Path(a.case) / "lmgc90"
-    co, cr = contacts(last(ours_box, "Vloc_Rloc")), contacts(ref / "Vloc_Rloc.LAST")
+    co = contacts(last(ours_box, "Vloc_Rloc"), a.gap_below, a.unordered)
+    cr = contacts(ref / "Vloc_Rloc.LAST", a.gap_below, a.unordered)
     no, nr = sum(map(len, co.values())), sum(map(len, cr.values()))
     only = len(set(co) ^ set(cr))
-    ok = report("contacts", only <= a.pairs_differ and abs(no - nr) <= a.count_differ,
+    which = "contacts" if a.gap_below is None else f"contacts with gapTT < {a.gap_below:g}"
+    ok = report(which, only <= a.pairs_differ and abs(no - nr) <= a.count_differ,
                 f"{no} ours, {nr} LMGC90's (at most {a.count_differ} apart), {only} pairs in one code only "
                 f"(at most {a.pairs_differ})")
     common = sorted(set(co) & set(cr))
@@ -99,6 +115,24 @@ def cmd_compare(a):
         rel = abs(so - sr) / max(abs(sr), 1e-300)
         ok &= report("summed rln/H", rel <= a.sum_rn, f"{so:.6e} ours, {sr:.6e} LMGC90's: {rel:.2e} apart "
                      f"(tolerance {a.sum_rn:g})")
+    if a.sum_rn_vertical is not None:
+        # The vertical part of the normal reactions: in a wall under gravity the bed
+        # joints carry the weight above them (statically determined), whichever side
+        # is candidate; the head joints' thrusts (hyperstatic) do not enter.
+        so, sr = (sum(r.rloc[1] * abs(r.normal[1]) for rs in cc.values() for r in rs) for cc in (co, cr))
+        rel = abs(so - sr) / max(abs(sr), 1e-300)
+        ok &= report("summed rln/H |n_y|", rel <= a.sum_rn_vertical, f"{so:.6e} ours, {sr:.6e} LMGC90's: "
+                     f"{rel:.2e} apart (tolerance {a.sum_rn_vertical:g})")
+    for spec in a.force_y or []:
+        # The vertical force the contacts of one type carry (on their candidates): where it
+        # is the weight of what they hold up (a wall on its ground, disks on a slab) it is
+        # statically determined, whatever the hyperstatic forces between the bodies.
+        inter, tol = spec.split("=")
+        fo, fr = (sum(r.rloc[1] * r.normal[1] - r.rloc[0] * r.normal[0]
+                      for rs in cc.values() for r in rs if r.inter == inter) for cc in (co, cr))
+        rel = abs(fo - fr) / max(abs(fr), 1e-300)
+        ok &= report(f"vertical force of the {inter} contacts", rel <= float(tol),
+                     f"{fo:.6e} ours, {fr:.6e} LMGC90's: {rel:.2e} apart (tolerance {float(tol):g})")
     if a.max_rn is not None:
         big = max((abs(r.rloc[1]) for rs in co.values() for r in rs), default=0.0)
         ref_big = max((abs(r.rloc[1]) for rs in cr.values() for r in rs), default=0.0)
@@ -227,6 +261,13 @@ def main(argv=None):
     c.add_argument("--pairs-differ", type=int, default=0)
     c.add_argument("--sum-rn", type=float)
     c.add_argument("--count-differ", type=int, default=0)
+    c.add_argument("--gap-below", type=float, help="compare only the contacts with gapTT below this (both codes)")
+    c.add_argument("--unordered", action="store_true",
+                   help="a pair is the same whichever side is candidate (polygons: the reference face)")
+    c.add_argument("--sum-rn-vertical", type=float,
+                   help="summed rln/H |n_y| of all contacts (the weight carried by bed joints) within REL")
+    c.add_argument("--force-y", action="append", metavar="INTER=REL",
+                   help="summed vertical force (rln n_y + rlt t_y) of the INTER contacts within REL")
     c.add_argument("--max-rn", type=float, help="largest |rln/H| of our contacts at most this")
     c.add_argument("--max-x", type=float, help="largest |X(1)|, |X(2)| of our bodies and nodes at most this")
     c.add_argument("--mean-x", type=float)
