@@ -324,7 +324,7 @@ contains
     integer, intent(in) :: status_begin
     real(wp), intent(out) :: shift(:), mu, coh(:), weff(:)
     logical, intent(out) :: active, cohesive, solvable
-    real(wp) :: beta, e, kn, cstiff(size(u_begin))
+    real(wp) :: beta, e, kn, cstiff(3)   ! (1:nd; an automatic array would be a malloc per call)
     integer :: nd, nn, j0, jh, av, kk, wq
     nd = size(u_begin)
     nn = nd * nd
@@ -357,14 +357,14 @@ contains
             coh(j0:j0 + nd - 2) = u0(1:nd - 1) + (1.0_wp - theta) * h * u_begin(1:nd - 1)
             coh(j0 + nd - 1) = (1.0_wp - theta) * h * shift(nd)
             coh(jh) = theta * h
-            coh(av:av + nd - 1) = -0.5_wp * h * e * cstiff * (u0 + coh(j0:j0 + nd - 1))
-            coh(kk:kk + nd - 1) = -0.5_wp * h * coh(jh) * e * cstiff
+            coh(av:av + nd - 1) = -0.5_wp * h * e * cstiff(1:nd) * (u0 + coh(j0:j0 + nd - 1))
+            coh(kk:kk + nd - 1) = -0.5_wp * h * coh(jh) * e * cstiff(1:nd)
           else
             ! LMGC90: the traction at the end jumps u_t + h u~_t, h u~_n
             coh(j0:j0 + nd - 2) = u0(1:nd - 1)
             coh(j0 + nd - 1) = 0.0_wp
             coh(jh) = h
-            coh(kk:kk + nd - 1) = -h**2 * e * cstiff
+            coh(kk:kk + nd - 1) = -h**2 * e * cstiff(1:nd)
             ! from the tangential jump at the start
             coh(av:av + nd - 2) = -h * e * law%czm%ct * u0(1:nd - 1)
             coh(av + nd - 1) = 0.0_wp
@@ -408,15 +408,16 @@ contains
     if (law%kind == law_visco_elastic_repell) weff(nn) = weff(nn) + 1.0_wp / (law%stiff * h**2 + law%etan * h)
   end subroutine law_local_problem
 
-  !> The law's jumps (nd: tangential, normal) at the end of the step of a cohesive
+  !> The law's jumps u1 (nd: tangential, normal) at the end of the step of a cohesive
   !> contact (coh from law_local_problem) whose shifted local velocity is u~ there.
-  pure function cohesive_end_jump(coh, utilde) result(u1)
-    real(wp), intent(in) :: coh(:), utilde(:)
-    real(wp) :: u1(size(utilde))
-    integer :: nd
-    nd = size(utilde)
+  !> (Explicit shapes from nd: the NLGS calls it for every cohesive contact at every
+  !> check; through assumed shapes it took 4 times the instructions.)
+  pure subroutine cohesive_end_jump(nd, coh, utilde, u1)
+    integer, intent(in) :: nd
+    real(wp), intent(in) :: coh(coh_size(nd)), utilde(nd)
+    real(wp), intent(out) :: u1(nd)
     u1 = coh(coh_j0(nd):coh_j0(nd) + nd - 1) + coh(coh_jh(nd)) * utilde
-  end function cohesive_end_jump
+  end subroutine cohesive_end_jump
 
   !> The jump a cohesive law (fracas_czm) sees, (ut, un), from a contact's jump u
   !> (nd: tangential, normal): in 2D u itself, in 3D the norm of the tangential part

@@ -182,7 +182,7 @@ contains
         rc = [cohesive_impulse(c, k, 1), cohesive_impulse(c, k, 2)]
         coh_work = coh_work - 0.5_wp * sum(rc * (c%u(:, k) + c%u_begin(:, k)))
         if (c%cohesive(k)) then
-          u1 = cohesive_end_jump(c%coh(:, k), c%u(:, k) + c%shift(:, k))
+          call cohesive_end_jump(2, c%coh(:, k), c%u(:, k) + c%shift(:, k), u1)
         else
           u1 = [c%internals(int_jump, k) + h * c%u(1, k), h * (c%u(2, k) + c%shift(2, k))]
         end if
@@ -505,7 +505,7 @@ contains
       if (law == 0) cycle
       associate (p => solver%cz(law), h => c%coh(coh_h(2), k), old => c%coh(coh_factor(2), k))
         beta0 = c%internals(int_beta(2), k)
-        u1 = cohesive_end_jump(c%coh(:, k), utilde(:, k))
+        call cohesive_end_jump(2, c%coh(:, k), utilde(:, k), u1)
         beta1 = czm_beta_update(p, beta0, u1(1), u1(2), h)
         if (solver%s%damage_midpoint) then
           g = czm_step_factor(p, beta0, beta1, c%coh(coh_u0(2):coh_u0(2) + 1, k), u1, h) / &

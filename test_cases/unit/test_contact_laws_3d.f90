@@ -172,8 +172,8 @@ contains
       call same_3d(what//' start jumps', coh3(coh_u0(3):coh_u0(3) + 2), coh2(coh_u0(2):coh_u0(2) + 1), e)
       call check_close(what//': jump factor', coh3(coh_jh(3)), coh2(coh_jh(2)), 0.0_wp)
       ! end jumps at u~ along e, and the damage and energy they give (tangential norm)
-      j2 = cohesive_end_jump(coh2, [1.0e-3_wp, 2.0e-2_wp])
-      j3 = cohesive_end_jump(coh3, [1.0e-3_wp * e, 2.0e-2_wp])
+      call cohesive_end_jump(2, coh2, [1.0e-3_wp, 2.0e-2_wp], j2)
+      call cohesive_end_jump(3, coh3, [1.0e-3_wp * e, 2.0e-2_wp], j3)
       call same_3d(what//' end jumps', j3, j2, e)
       call check_true(what//': end jumps j0 + jh u~', abs(j2(2) - (coh2(coh_j0(2) + 1) + coh2(coh_jh(2)) * 2.0e-2_wp)) &
                       <= 1e-15_wp * abs(j2(2)))
