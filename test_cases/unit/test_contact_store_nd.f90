@@ -13,29 +13,13 @@ program test_contact_store_nd
                                  int_beta, int_tps
   use fracas_testing, only: check_true, test_finish
   implicit none
-  type(contacts_t) :: c2, c3
   integer :: nd
 
-  c2%with_cohesion = .true.; c2%with_mesh = .true.
-  call contacts_reserve(c2, 10)
-  call check_true('2D: frame (2, 2, cap)', all(shape(c2%frame) == [2, 2, size(c2%inter)]))
-  call check_true('2D: point, r, u, u_begin, shift (2, cap)', size(c2%point, 1) == 2 .and. size(c2%r, 1) == 2 .and. &
-                  size(c2%u, 1) == 2 .and. size(c2%u_begin, 1) == 2 .and. size(c2%shift, 1) == 2)
-  call check_true('2D: lever 4, w 4, wi 6', size(c2%lever, 1) == 4 .and. size(c2%w, 1) == 4 .and. size(c2%wi, 1) == 6)
-  call check_true('2D: coh 29, internals 5', size(c2%coh, 1) == 29 .and. size(c2%internals, 1) == 5)
-  call check_true('2D: mnode, mwt 4', size(c2%mnode, 1) == 4 .and. size(c2%mwt, 1) == 4)
+  ! (nd, lever, w, wi, coh, internals, mnode/mwt) as the header says
+  call check_store(2, [4, 4, 6, 29, 5, 4])
+  call check_store(3, [18, 9, 9, 44, 6, 8])
   call check_true('2D internals: L, ut, un, beta, TPSini', int_jump == 2 .and. int_beta(2) == 4 .and. int_tps(2) == 5)
-
-  c3%nd = 3
-  c3%with_cohesion = .true.; c3%with_mesh = .true.
-  call contacts_reserve(c3, 10)
-  call check_true('3D: frame (3, 3, cap)', all(shape(c3%frame) == [3, 3, size(c3%inter)]))
-  call check_true('3D: point, r, u, u_begin, shift (3, cap)', size(c3%point, 1) == 3 .and. size(c3%r, 1) == 3 .and. &
-                  size(c3%u, 1) == 3 .and. size(c3%u_begin, 1) == 3 .and. size(c3%shift, 1) == 3)
-  call check_true('3D: lever 18, w 9, wi 9', size(c3%lever, 1) == 18 .and. size(c3%w, 1) == 9 .and. size(c3%wi, 1) == 9)
-  call check_true('3D: internals 6 (L, ut1, ut2, un, beta, TPSini)', size(c3%internals, 1) == 6 .and. &
-                  int_beta(3) == 5 .and. int_tps(3) == 6)
-  call check_true('3D: mnode, mwt 8', size(c3%mnode, 1) == 8 .and. size(c3%mwt, 1) == 8)
+  call check_true('3D internals: L, ut1, ut2, un, beta, TPSini', int_beta(3) == 5 .and. int_tps(3) == 6)
   call check_true('sizes by nd', all(rigid_lever_size == [2, 9]) .and. all(mesh_side_nodes == [2, 4]) .and. &
                   all(wi_size == [6, 9]) .and. all(n_internals == [5, 6]))
 
@@ -47,6 +31,24 @@ program test_contact_store_nd
   call test_finish()
 
 contains
+
+  !> A store of dimension nd with cohesion and meshes: every per-contact array's first
+  !> extent(s); ref = (lever, w, wi, coh, internals, mnode/mwt).
+  subroutine check_store(nd, ref)
+    integer, intent(in) :: nd, ref(6)
+    type(contacts_t) :: c
+    character(len=2) :: d
+    d = achar(48 + nd)//'D'
+    c%nd = nd
+    c%with_cohesion = .true.; c%with_mesh = .true.
+    call contacts_reserve(c, 10)
+    call check_true(d//': frame (nd, nd, cap)', all(shape(c%frame) == [nd, nd, size(c%inter)]))
+    call check_true(d//': point, r, u, u_begin, shift (nd, cap)', all([size(c%point, 1), size(c%r, 1), &
+                    size(c%u, 1), size(c%u_begin, 1), size(c%shift, 1)] == nd))
+    call check_true(d//': lever, w, wi, coh, internals, mnode, mwt', all([size(c%lever, 1), size(c%w, 1), &
+                    size(c%wi, 1), size(c%coh, 1), size(c%internals, 1), size(c%mnode, 1)] == ref) .and. &
+                    size(c%mwt, 1) == ref(6))
+  end subroutine check_store
 
   !> Every entry of 1..coh_size(nd) belongs to exactly one named part.
   logical function tiles(nd)
