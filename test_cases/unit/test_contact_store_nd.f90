@@ -6,7 +6,6 @@
 !> each), mnode/mwt 2 x 4 (a face), internals 6 (L, ut1, ut2, un, beta, TPSini). The
 !> layout of coh must tile 1 .. coh_size(nd) with its named parts, no gap, no overlap.
 program test_contact_store_nd
-  use fracas_kinds, only: wp
   use fracas_contacts, only: contacts_t, contacts_reserve, rigid_lever_size, mesh_side_nodes, wi_size
   use fracas_contact_laws, only: coh_size, coh_wprime, coh_av, coh_k, coh_law, coh_h, coh_factor, coh_released, &
                                  coh_prev, coh_jh, coh_bracket, coh_u0, coh_uend, coh_j0, n_internals, int_jump, &
