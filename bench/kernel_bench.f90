@@ -261,7 +261,7 @@ contains
       wi(:, k) = inverse_block(w(1, k), w(2, k), w(3, k), w(4, k), mu(k))
       shift(:, k) = 0.0_wp
     end do
-    allocate (coh(coh_size, 1))
+    allocate (coh(coh_size(2), 1))
     coh = 0.0_wp
     allocate (bb(6, nb), rr(2, nc), bod(2, nc), pcr(pk_size, nc), picoh(nc), pst(nc))
     picoh = 0

@@ -4,16 +4,31 @@
 !> indexed by candidate contactor so a new contact finds its past in O(1).
 module fracas_contacts
   use fracas_kinds, only: wp
-  use fracas_contact_laws, only: coh_size
+  use fracas_contact_laws, only: coh_size, n_internals
   implicit none
   private
   public :: contacts_t, history_t, contacts_reserve, contacts_clear, history_from_contacts, &
-            history_find, history_find_near, history_build, history_knows_pair, n_internals
+            history_find, history_find_near, history_build, history_knows_pair, &
+            rigid_lever_size, mesh_side_nodes, wi_size
 
-  integer, parameter :: n_internals = 5   !< L, ut, un, beta, TPSini (2D cohesive laws)
+  ! Per-contact sizes in dimension nd (arrays indexed by nd, so a 2D kernel's sizes
+  ! are constants): what a side model keeps per contact side, and what the local
+  ! solver keeps of the block it solves with.
+  !> A rigid side: (P - c) x each frame vector, for each rotation dof (1 in 2D, 3 in 3D).
+  integer, parameter :: rigid_lever_size(2:3) = [2, 9]
+  !> A meshed side: the nodes (and weights) that give its point (an edge's 2 in 2D,
+  !> a face's up to 4 in 3D).
+  integer, parameter :: mesh_side_nodes(2:3) = [2, 4]
+  !> The local solver's precomputed inverse (fracas_local_solver: inverse_block in 2D,
+  !> inverse_block_3d in 3D).
+  integer, parameter :: wi_size(2:3) = [6, 9]
 
+  !> Contacts of one scene, all of one dimension nd (2 or 3). Local vectors are
+  !> ordered tangential part first, normal last ((t, n); (t1, t2, n)) and local
+  !> blocks stored by rows (fracas_contact_laws).
   type :: contacts_t
     integer :: n = 0
+    integer :: nd = 2                        !< dimension; set before contacts_reserve
     logical :: with_cohesion = .false.       !< cohesive laws (or IQS_CLB_g0) in the scene: internals and coh are allocated
     integer, allocatable :: inter(:)         !< interaction type id (fracas_ids)
     integer, allocatable :: cd(:), an(:)     !< candidate / antagonist contactor
@@ -23,32 +38,36 @@ module fracas_contacts
     integer, allocatable :: sub(:)           !< key of the contact within its pair (candidate polygon vertex, else 0)
     integer, allocatable :: cdver(:), anseg(:)  !< polygon vertex / edge involved (0 if none)
     integer, allocatable :: status(:), status_begin(:)
-    real(wp), allocatable :: normal(:, :)    !< (2,n), from antagonist to candidate; t = (n2, -n1)
-    real(wp), allocatable :: point(:, :)     !< (2,n) contact point (detection configuration)
+    !> (nd,nd,n) local frame, columns the tangent(s) then the normal n (from antagonist
+    !> to candidate); 2D: (t, n), t = (n2, -n1)
+    real(wp), allocatable :: frame(:, :, :)
+    real(wp), allocatable :: point(:, :)     !< (nd,n) contact point (detection configuration)
     real(wp), allocatable :: gap(:)          !< gap at the detection configuration
-    real(wp), allocatable :: lever(:, :)     !< (4,n): (P-c_cd)x t, (P-c_cd)x n, (P-c_an)x t, (P-c_an)x n
-    real(wp), allocatable :: w(:, :)         !< (4,n) Delassus block: tt, tn, nt, nn
-    real(wp), allocatable :: shift(:, :)     !< (2,n) law shift of the local velocity
+    !> (2 rigid_lever_size(nd), n) lever arms of the rigid sides, candidate then
+    !> antagonist; 2D: (P-c_cd)x t, (P-c_cd)x n, (P-c_an)x t, (P-c_an)x n
+    real(wp), allocatable :: lever(:, :)
+    real(wp), allocatable :: w(:, :)         !< (nd*nd,n) Delassus block by rows (2D: tt, tn, nt, nn)
+    real(wp), allocatable :: shift(:, :)     !< (nd,n) law shift of the local velocity
     real(wp), allocatable :: mu(:)           !< friction this step
     logical, allocatable :: active(:)        !< .false.: no reaction this step (open RST contact)
-    real(wp), allocatable :: r(:, :)         !< (2,n) impulses (t, n)
-    real(wp), allocatable :: u(:, :)         !< (2,n) relative velocity at the end of the step
-    real(wp), allocatable :: u_begin(:, :)   !< (2,n) relative velocity at the beginning
-    real(wp), allocatable :: wi(:, :)        !< (6,n) what the local solver needs of its (effective) W
+    real(wp), allocatable :: r(:, :)         !< (nd,n) impulses (t, n)
+    real(wp), allocatable :: u(:, :)         !< (nd,n) relative velocity at the end of the step
+    real(wp), allocatable :: u_begin(:, :)   !< (nd,n) relative velocity at the beginning
+    real(wp), allocatable :: wi(:, :)        !< (wi_size(nd),n) what the local solver needs of its (effective) W
     real(wp), allocatable :: length(:)       !< length carried by the contact point (cohesive laws)
-    ! Cohesive contacts: internals (L, ut, un, beta, time damage started) as
+    ! Cohesive contacts: internals (L, the jumps, beta, time damage started) as
     ! LMGC90 writes them, and the step data of the cohesive impulse eliminated
-    ! locally (fracas_contact_laws: coh_size).
-    real(wp), allocatable :: internals(:, :) !< (n_internals,n)
+    ! locally (fracas_contact_laws: n_internals, coh_size).
+    real(wp), allocatable :: internals(:, :) !< (n_internals(nd),n)
     logical, allocatable :: cohesive(:)
-    real(wp), allocatable :: coh(:, :)       !< (coh_size,n)
+    real(wp), allocatable :: coh(:, :)       !< (coh_size(nd),n)
     ! Meshed sides (scenes with meshes only): the nodes (mesh node numbers)
     ! and weights that give the velocity of the contact point on each side:
-    ! v = mwt(1) v(mnode(1)) + mwt(2) v(mnode(2)) for the candidate, 3:4 for
+    ! 2D: v = mwt(1) v(mnode(1)) + mwt(2) v(mnode(2)) for the candidate, 3:4 for
     ! the antagonist; 0 nodes on a rigid side.
     logical :: with_mesh = .false.
-    integer, allocatable :: mnode(:, :)      !< (4,n)
-    real(wp), allocatable :: mwt(:, :)       !< (4,n)
+    integer, allocatable :: mnode(:, :)      !< (2 mesh_side_nodes(nd),n)
+    real(wp), allocatable :: mwt(:, :)       !< (2 mesh_side_nodes(nd),n)
   end type contacts_t
 
   !> Contacts of the previous step, grouped by candidate contactor.
@@ -56,43 +75,45 @@ module fracas_contacts
     integer :: n = 0
     integer, allocatable :: first(:)         !< (ntactors+1) offsets into the lists
     integer, allocatable :: inter(:), an(:), sub(:), status(:)
-    real(wp), allocatable :: force(:, :)     !< (2,n) reaction / time step
-    real(wp), allocatable :: point(:, :)     !< (2,n) contact point
-    real(wp), allocatable :: internals(:, :) !< (n_internals,n)
+    real(wp), allocatable :: force(:, :)     !< (nd,n) reaction / time step
+    real(wp), allocatable :: point(:, :)     !< (nd,n) contact point
+    real(wp), allocatable :: internals(:, :) !< (n_internals(nd),n)
   end type history_t
 
 contains
 
-  !> Make room for at least n contacts (keeps nothing: the store is refilled each step).
+  !> Make room for at least n contacts (keeps nothing: the store is refilled each step),
+  !> each array with the extents of dimension c%nd.
   subroutine contacts_reserve(c, n)
     type(contacts_t), intent(inout) :: c
     integer, intent(in) :: n
-    integer :: cap
+    integer :: cap, nd
     if (allocated(c%inter)) then
       if (size(c%inter) >= n) return
       call free_all()
     end if
     cap = max(16, n + n / 2)
+    nd = c%nd
     allocate (c%inter(cap), c%cd(cap), c%an(cap), c%cdb(cap), c%anb(cap), c%cdm(cap), c%anm(cap), c%law(cap), c%sub(cap), &
               c%cdver(cap), c%anseg(cap), c%status(cap), &
-              c%status_begin(cap), c%normal(2, cap), c%point(2, cap), c%gap(cap), c%lever(4, cap), &
-              c%w(4, cap), c%shift(2, cap), c%mu(cap), c%active(cap), c%r(2, cap), c%u(2, cap), &
-              c%u_begin(2, cap), c%wi(6, cap), c%length(cap), c%cohesive(cap))
+              c%status_begin(cap), c%frame(nd, nd, cap), c%point(nd, cap), c%gap(cap), &
+              c%lever(2 * rigid_lever_size(nd), cap), c%w(nd * nd, cap), c%shift(nd, cap), c%mu(cap), c%active(cap), &
+              c%r(nd, cap), c%u(nd, cap), c%u_begin(nd, cap), c%wi(wi_size(nd), cap), c%length(cap), c%cohesive(cap))
     ! Only a scene with cohesive laws pays for their per-contact state.
     if (c%with_cohesion) then
-      allocate (c%internals(n_internals, cap), c%coh(coh_size, cap))
+      allocate (c%internals(n_internals(nd), cap), c%coh(coh_size(nd), cap))
     else
-      allocate (c%internals(n_internals, 0), c%coh(coh_size, 0))
+      allocate (c%internals(n_internals(nd), 0), c%coh(coh_size(nd), 0))
     end if
     if (c%with_mesh) then
-      allocate (c%mnode(4, cap), c%mwt(4, cap))
+      allocate (c%mnode(2 * mesh_side_nodes(nd), cap), c%mwt(2 * mesh_side_nodes(nd), cap))
     else
-      allocate (c%mnode(4, 0), c%mwt(4, 0))
+      allocate (c%mnode(2 * mesh_side_nodes(nd), 0), c%mwt(2 * mesh_side_nodes(nd), 0))
     end if
   contains
     subroutine free_all()
       deallocate (c%inter, c%cd, c%an, c%cdb, c%anb, c%cdm, c%anm, c%law, c%sub, c%cdver, c%anseg, c%status, &
-                  c%status_begin, c%normal, &
+                  c%status_begin, c%frame, &
                   c%point, c%gap, c%lever, c%w, c%shift, c%mu, c%active, c%r, c%u, c%u_begin, c%wi, &
                   c%length, c%internals, c%cohesive, c%coh, c%mnode, c%mwt)
     end subroutine free_all
@@ -104,7 +125,8 @@ contains
   end subroutine contacts_clear
 
   !> Group records (cd, an, sub, inter, status, force) by candidate contactor.
-  !> internals (n_internals, n) only for scenes with cohesive laws.
+  !> force and point (nd, n); internals (n_internals(nd), n) only for scenes with
+  !> cohesive laws.
   subroutine history_build(hist, ntactors, cd, an, sub, inter, status, force, point, internals)
     type(history_t), intent(out) :: hist
     integer, intent(in) :: ntactors, cd(:), an(:), sub(:), inter(:), status(:)
@@ -115,8 +137,8 @@ contains
     n = size(cd)
     hist%n = n
     allocate (hist%first(ntactors + 1), hist%inter(n), hist%an(n), hist%sub(n), hist%status(n), &
-              hist%force(2, n), hist%point(2, n))
-    if (present(internals)) allocate (hist%internals(n_internals, n))
+              hist%force(size(force, 1), n), hist%point(size(point, 1), n))
+    if (present(internals)) allocate (hist%internals(size(internals, 1), n))
     hist%first = 0
     do k = 1, n
       hist%first(cd(k) + 1) = hist%first(cd(k) + 1) + 1
@@ -184,7 +206,7 @@ contains
   pure subroutine history_find_near(hist, inter, a, b, point, tol, pos, swapped)
     type(history_t), intent(in) :: hist
     integer, intent(in) :: inter, a, b
-    real(wp), intent(in) :: point(2), tol
+    real(wp), intent(in) :: point(:), tol
     integer, intent(out) :: pos
     logical, intent(out) :: swapped
     real(wp) :: best, d

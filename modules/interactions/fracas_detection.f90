@@ -5,7 +5,7 @@ module fracas_detection
   use fracas_kinds, only: wp, i8
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_deck, only: see_rule_input_t
-  use fracas_errors, only: input_error
+  use fracas_errors, only: input_error, fatal, itoa
   use fracas_ids, only: i_dkdkx, i_dkjcx, i_dkkdx, i_dkplx, i_plplx, i_pljcx, i_clalp, i_cljcx, i_dkalp, i_plalp, &
                         st_noctc, bm_rigid, bm_mesh, tactor_kind_id
   use fracas_contactors, only: tactors_t, tactor_center, tactor_vertices, tk_disk, tk_xksid, tk_jonc, tk_polyg, &
@@ -562,6 +562,8 @@ contains
         nmax = nmax + 2
       end select
     end do
+    ! The pairs here are 2D (3D contactors and pairs: issue 21).
+    if (c%nd /= 2) call fatal('detection: the contact store is '//itoa(c%nd)//'D; only 2D pairs are detected')
     call contacts_reserve(c, nmax)
     c%n = 0
     allocate (cl_kept(t%n), source=0)
@@ -762,7 +764,8 @@ contains
       c%sub(k) = cdver
       c%cdver(k) = cdver
       c%anseg(k) = anseg
-      c%normal(:, k) = normal
+      c%frame(:, 1, k) = [normal(2), -normal(1)]   ! (t, n), 2D
+      c%frame(:, 2, k) = normal
       c%point(:, k) = point
       c%gap(k) = gap
       c%length(k) = len

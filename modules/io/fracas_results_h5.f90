@@ -254,7 +254,8 @@ contains
 
   !> One snapshot /snapshots/NNNNNN (1, 2, ... zero-padded to 6 digits): body
   !> states X, V (ndof, nb) and the contacts (nc of them). normal, point,
-  !> reaction (rt, rn forces), velocity (ut, un) are (2, nc); internals (nint, nc);
+  !> reaction (rt, rn forces), velocity (ut, un) are (nd, nc), nd the contacts'
+  !> dimension (2; 3: tangential t1, t2 then normal); internals (nint, nc);
   !> broken (nc) flags the cohesive interfaces that are broken (beta = 0).
   subroutine results_write_snapshot(r, step, time, X, V, inter, cd_body, an_body, cd_tactor, &
                                     an_tactor, status, law, normal, point, reaction, velocity, gap, &
@@ -283,10 +284,12 @@ contains
     call same_size(w, 'status', size(status), nc)
     call same_size(w, 'law', size(law), nc)
     call same_size(w, 'gap', size(gap), nc)
-    call pair_shape(w, 'normal', normal, nc)
-    call pair_shape(w, 'point', point, nc)
-    call pair_shape(w, 'reaction', reaction, nc)
-    call pair_shape(w, 'velocity', velocity, nc)
+    if (size(normal, 1) /= 2 .and. size(normal, 1) /= 3) &
+      call fatal(w//': normal has '//itoa(size(normal, 1))//' rows, expected 2 or 3 (the dimension)')
+    call pair_shape(w, 'normal', normal, size(normal, 1), nc)
+    call pair_shape(w, 'point', point, size(normal, 1), nc)
+    call pair_shape(w, 'reaction', reaction, size(normal, 1), nc)
+    call pair_shape(w, 'velocity', velocity, size(normal, 1), nc)
     if (present(internals)) call same_size(w, 'internals columns', size(internals, 2), nc)
     if (present(broken)) call same_size(w, 'broken', size(broken), nc)
 
@@ -380,13 +383,13 @@ contains
     if (n /= nref) call fatal(who//': '//what//' has size '//itoa(n)//', expected '//itoa(nref))
   end subroutine same_size
 
-  subroutine pair_shape(who, what, a, nc)
+  subroutine pair_shape(who, what, a, nd, nc)
     character(len=*), intent(in) :: who, what
     real(wp), intent(in) :: a(:, :)
-    integer, intent(in) :: nc
-    if (size(a, 1) /= 2 .or. size(a, 2) /= nc) &
+    integer, intent(in) :: nd, nc
+    if (size(a, 1) /= nd .or. size(a, 2) /= nc) &
       call fatal(who//': '//what//' has shape ('//itoa(size(a, 1))//','//itoa(size(a, 2))// &
-                 '), expected (2,'//itoa(nc)//')')
+                 '), expected ('//itoa(nd)//','//itoa(nc)//')')
   end subroutine pair_shape
 
   !> Open group NAME under loc, creating it if missing.

@@ -16,7 +16,7 @@ module fracas_cracks
   use fracas_kinds, only: wp
   use fracas_contactors, only: tactors_t, tk_clxxx
   use fracas_contacts, only: contacts_t
-  use fracas_contact_laws, only: law_t, law_czm, coh_released
+  use fracas_contact_laws, only: law_t, law_czm, coh_released, int_beta
   use fracas_mailx, only: mailx_t
   use fracas_ids, only: bm_mesh
   implicit none
@@ -167,18 +167,18 @@ contains
       if (p == 0) cycle
       if (.not. cr%pt_seen(p)) then
         cr%pt_seen(p) = .true.
-        cr%pt_glued(p) = first .and. c%internals(4, k) > 0.0_wp
+        cr%pt_glued(p) = first .and. c%internals(int_beta(c%nd), k) > 0.0_wp
         if (.not. cr%pt_glued(p)) cycle
         cr%pt_an(p) = c%an(k)
         if (c%anm(k) == bm_mesh) cr%pt_partner(p) = c%anb(k)
       end if
       if (.not. cr%pt_glued(p) .or. c%an(k) /= cr%pt_an(p)) cycle
       present_now(p) = .true.
-      if (c%internals(4, k) < cr%pt_beta(p)) then
+      if (c%internals(int_beta(c%nd), k) < cr%pt_beta(p)) then
         associate (f => cr%edge_family(cr%pt_edge(p)))
-          cr%family_damage(f) = cr%family_damage(f) + c%coh(coh_released, k)
+          cr%family_damage(f) = cr%family_damage(f) + c%coh(coh_released(c%nd), k)
         end associate
-        cr%pt_beta(p) = c%internals(4, k)
+        cr%pt_beta(p) = c%internals(int_beta(c%nd), k)
       end if
     end do
     where (cr%pt_glued .and. .not. present_now) cr%pt_beta = 0.0_wp

@@ -17,15 +17,16 @@ module fracas_nlgs
   use fracas_mailx, only: mailx_t, mailx_require_compliance, mailx_compliance_columns, &
                           mailx_contact_dofs, &
                           mailx_velocity_from_impulses
-  use fracas_contacts, only: contacts_t
+  use fracas_contacts, only: contacts_t, mesh_side_nodes
   use fracas_contact_laws, only: law_t, law_local_problem, law_czm, cohesive_elimination, coh_size, coh_law, &
-                                 coh_factor, coh_released, coh_u0t, coh_u0n, coh_h, coh_prev, coh_uend, coh_bracket, &
-                                 cohesive_end_jump
+                                 coh_factor, coh_released, coh_u0, coh_h, coh_prev, coh_uend, coh_bracket, coh_wprime, &
+                                 coh_av, coh_k, cohesive_end_jump, n_internals, int_jump, int_beta, int_tps
   use fracas_czm, only: czm_t, czm_beta_update, czm_stored_energy, czm_step_dissipation, czm_step_factor, &
                         czm_beta_power, czm_softening_length
   use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
   use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
   use fracas_grow, only: grow
+  use fracas_errors, only: fatal, itoa
   implicit none
   private
   public :: nlgs_settings_t, nlgs_report_t, nlgs_t, nlgs_init, nlgs_prepare, nlgs_solve, &
@@ -139,7 +140,7 @@ contains
     else
       dv = dv - mesh2_point_velocity(vm(:, c%mnode(3, k)), vm(:, c%mnode(4, k)), c%mwt(3, k), c%mwt(4, k))
     end if
-    call frame2_local(c%normal(1, k), c%normal(2, k), dv(1), dv(2), u(1), u(2))
+    call frame2_local(c%frame(1, 2, k), c%frame(2, 2, k), dv(1), dv(2), u(1), u(2))
     if (c%cdm(k) == bm_rigid) call rigid2_add_spin(1.0_wp, v(3, c%cdb(k)), c%lever(1, k), c%lever(2, k), u(1), u(2))
     if (c%anm(k) == bm_rigid) call rigid2_add_spin(-1.0_wp, v(3, c%anb(k)), c%lever(3, k), c%lever(4, k), u(1), u(2))
   end function contact_velocity
@@ -150,7 +151,8 @@ contains
     type(contacts_t), intent(in) :: c
     integer, intent(in) :: k, i
     rc = 0.0_wp
-    if (c%cohesive(k)) rc = c%coh(coh_factor, k) * (c%coh(8 + i, k) + c%coh(10 + i, k) * (c%u(i, k) + c%shift(i, k)))
+    if (c%cohesive(k)) rc = c%coh(coh_factor(2), k) * (c%coh(coh_av(2) - 1 + i, k) + &
+                                                        c%coh(coh_k(2) - 1 + i, k) * (c%u(i, k) + c%shift(i, k)))
   end function cohesive_impulse
 
   !> After convergence: the jumps, the damage beta and the time damage started
@@ -180,24 +182,24 @@ contains
         rc = [cohesive_impulse(c, k, 1), cohesive_impulse(c, k, 2)]
         coh_work = coh_work - 0.5_wp * sum(rc * (c%u(:, k) + c%u_begin(:, k)))
         if (c%cohesive(k)) then
-          u1 = cohesive_end_jump(c%coh(:, k), c%u(:, k) + c%shift(:, k))
+          call cohesive_end_jump(2, c%coh(:, k), c%u(:, k) + c%shift(:, k), u1)
         else
-          u1 = [c%internals(2, k) + h * c%u(1, k), h * (c%u(2, k) + c%shift(2, k))]
+          u1 = [c%internals(int_jump, k) + h * c%u(1, k), h * (c%u(2, k) + c%shift(2, k))]
         end if
         ut = u1(1); un = u1(2)
-        beta = czm_beta_update(z, c%internals(4, k), ut, un, h)
-        if (beta < 1.0_wp .and. c%internals(5, k) < 0.0_wp) c%internals(5, k) = t_end
-        if (beta < c%internals(4, k)) increment = max(increment, norm2([ut - c%internals(2, k), &
-          max(un, 0.0_wp) - max(c%internals(3, k), 0.0_wp)]) / czm_softening_length(z, ut, un))
+        beta = czm_beta_update(z, c%internals(int_beta(2), k), ut, un, h)
+        if (beta < 1.0_wp .and. c%internals(int_tps(2), k) < 0.0_wp) c%internals(int_tps(2), k) = t_end
+        if (beta < c%internals(int_beta(2), k)) increment = max(increment, norm2([ut - c%internals(int_jump, k), &
+          max(un, 0.0_wp) - max(c%internals(int_jump + 1, k), 0.0_wp)]) / czm_softening_length(z, ut, un))
         e_new = c%length(k) * czm_stored_energy(z, beta, ut, un)
-        if (c%cohesive(k) .and. c%coh(coh_law, k) > 0.0_wp) then
-          e_k = c%length(k) * czm_step_dissipation(z, c%internals(4, k), beta, ut, un, h)
+        if (c%cohesive(k) .and. c%coh(coh_law(2), k) > 0.0_wp) then
+          e_k = c%length(k) * czm_step_dissipation(z, c%internals(int_beta(2), k), beta, ut, un, h)
         else
-          e_k = c%length(k) * czm_stored_energy(z, c%internals(4, k), ut, un) - e_new
+          e_k = c%length(k) * czm_stored_energy(z, c%internals(int_beta(2), k), ut, un) - e_new
         end if
         released = released + e_k
-        if (c%cohesive(k)) c%coh(coh_released, k) = e_k
-        c%internals(1:4, k) = [c%length(k), ut, un, beta]
+        if (c%cohesive(k)) c%coh(coh_released(2), k) = e_k
+        c%internals(1:int_beta(2), k) = [c%length(k), ut, un, beta]
         stored = stored + e_new
         if (c%cohesive(k)) then
           select case (c%status(k))
@@ -228,17 +230,18 @@ contains
     type(law_t), intent(in) :: laws(:)
     real(wp), intent(in) :: h
     integer :: k, a, o
-    real(wp) :: weff(4), coh(coh_size), internals(5)
+    real(wp) :: weff(4), coh(coh_size(2)), internals(n_internals(2))
     logical :: active, cohesive, solvable
+    call require_2d(c)
     if (c%with_mesh) call mesh_blocks(solver, c, m)
     if (.not. allocated(solver%cz)) solver%cz = laws%czm
     internals = 0.0_wp
     do k = 1, c%n
       a = c%cdb(k); o = c%anb(k)
       c%w(:, k) = 0.0_wp
-      if (c%cdm(k) == bm_rigid) call rigid2_add_delassus(b%inv_mass(:, a), c%normal(1, k), c%normal(2, k), &
+      if (c%cdm(k) == bm_rigid) call rigid2_add_delassus(b%inv_mass(:, a), c%frame(1, 2, k), c%frame(2, 2, k), &
                                                          c%lever(1, k), c%lever(2, k), c%w(:, k))
-      if (c%anm(k) == bm_rigid) call rigid2_add_delassus(b%inv_mass(:, o), c%normal(1, k), c%normal(2, k), &
+      if (c%anm(k) == bm_rigid) call rigid2_add_delassus(b%inv_mass(:, o), c%frame(1, 2, k), c%frame(2, 2, k), &
                                                          c%lever(3, k), c%lever(4, k), c%w(:, k))
       c%w(3, k) = c%w(2, k)
       if (c%cdm(k) == bm_mesh .or. c%anm(k) == bm_mesh) call add_mesh_block(k)
@@ -253,7 +256,7 @@ contains
       c%active(k) = active
       c%cohesive(k) = cohesive
       if (cohesive) then
-        if (solver%s%damage_in_step .and. laws(c%law(k))%kind == law_czm) coh(coh_law) = c%law(k)
+        if (solver%s%damage_in_step .and. laws(c%law(k))%kind == law_czm) coh(coh_law(2)) = c%law(k)
         c%coh(:, k) = coh
       end if
       c%wi(:, k) = 0.0_wp
@@ -272,7 +275,7 @@ contains
       integer, intent(in) :: k
       integer :: s, s2, i, mb, g0, sl
       real(wp) :: t(2), nrm(2), sgn, ht_g(2), hn_g(2), wgt
-      nrm = c%normal(:, k)
+      nrm = c%frame(:, 2, k)
       t = [nrm(2), -nrm(1)]
       do s = 1, 2
         if (side_model(c, k, s) /= bm_mesh) cycle
@@ -298,6 +301,15 @@ contains
     end subroutine add_mesh_block
   end subroutine nlgs_prepare
 
+  !> The scene NLGS is the 2D specialisation: its kernels (fracas_local_solver), the
+  !> packed records and the contact sides it includes are those of nd = 2. A store of
+  !> another dimension stops here, where the kernels are chosen (3D rigid: issue 21).
+  subroutine require_2d(c)
+    type(contacts_t), intent(in) :: c
+    if (c%nd /= 2) call fatal('nlgs: no contact kernel for dimension '//itoa(c%nd)// &
+                              ' (only 2D contacts are solved)')
+  end subroutine require_2d
+
   pure integer function side_model(c, k, s)
     type(contacts_t), intent(in) :: c
     integer, intent(in) :: k, s
@@ -321,11 +333,11 @@ contains
     integer, allocatable :: nodes(:)
     real(wp), allocatable :: cols(:, :)
     real(wp) :: t(2), nrm(2), sgn, wgt
-    allocate (nodes(4 * c%n))
+    allocate (nodes(size(c%mnode, 1) * c%n))
     nnod = 0
     do k = 1, c%n
-      do i = 1, 4
-        if (side_model(c, k, (i + 1) / 2) /= bm_mesh) cycle
+      do i = 1, 2 * mesh_side_nodes(2)
+        if (side_model(c, k, (i - 1) / mesh_side_nodes(2) + 1) /= bm_mesh) cycle
         nnod = nnod + 1
         nodes(nnod) = c%mnode(i, k)
       end do
@@ -385,7 +397,7 @@ contains
     end do
     call grow(solver%gmat, total)
     do k = 1, c%n
-      nrm = c%normal(:, k)
+      nrm = c%frame(:, 2, k)
       t = [nrm(2), -nrm(1)]
       do s = 1, 2
         if (side_model(c, k, s) /= bm_mesh) cycle
@@ -489,14 +501,14 @@ contains
     changed = .false.
     do k = 1, c%n
       if (.not. c%cohesive(k)) cycle
-      law = nint(c%coh(coh_law, k))
+      law = nint(c%coh(coh_law(2), k))
       if (law == 0) cycle
-      associate (p => solver%cz(law), h => c%coh(coh_h, k), old => c%coh(coh_factor, k))
-        beta0 = c%internals(4, k)
-        u1 = cohesive_end_jump(c%coh(:, k), utilde(:, k))
+      associate (p => solver%cz(law), h => c%coh(coh_h(2), k), old => c%coh(coh_factor(2), k))
+        beta0 = c%internals(int_beta(2), k)
+        call cohesive_end_jump(2, c%coh(:, k), utilde(:, k), u1)
         beta1 = czm_beta_update(p, beta0, u1(1), u1(2), h)
         if (solver%s%damage_midpoint) then
-          g = czm_step_factor(p, beta0, beta1, [c%coh(coh_u0t, k), c%coh(coh_u0n, k)], u1, h) / &
+          g = czm_step_factor(p, beta0, beta1, c%coh(coh_u0(2):coh_u0(2) + 1, k), u1, h) / &
               beta0**czm_beta_power(p)
         else
           g = (beta1 / beta0)**czm_beta_power(p)   ! LMGC90's check pass: beta^k at the jumps it reached
@@ -505,9 +517,9 @@ contains
         f = g
         r_now = old - g
         r_prev = 0.0_wp
-        if (c%coh(coh_prev, k) >= 0.0_wp) r_prev = c%coh(coh_prev, k) - c%coh(coh_prev + 1, k)
+        if (c%coh(coh_prev(2), k) >= 0.0_wp) r_prev = c%coh(coh_prev(2), k) - c%coh(coh_prev(2) + 1, k)
         if (solver%s%damage_midpoint) then     ! (lmgc90: f = g, as LMGC90's checks)
-          associate (br => c%coh(coh_bracket:coh_bracket + 3, k))   ! (f, r) with r < 0, then with r > 0
+          associate (br => c%coh(coh_bracket(2):coh_bracket(2) + 3, k))   ! (f, r) with r < 0, then with r > 0
             if (r_now < 0.0_wp) then
               br(1:2) = [old, r_now]
             else
@@ -537,19 +549,20 @@ contains
                 end if
               end if
               f = br(1) - br(2) * (br(3) - br(1)) / (br(4) - br(2))
-            else if (c%coh(coh_prev, k) >= 0.0_wp .and. c%coh(coh_prev, k) /= old) then
-              slope = (r_now - r_prev) / (old - c%coh(coh_prev, k))
+            else if (c%coh(coh_prev(2), k) >= 0.0_wp .and. c%coh(coh_prev(2), k) /= old) then
+              slope = (r_now - r_prev) / (old - c%coh(coh_prev(2), k))
               if (slope > 0.0_wp) f = min(1.0_wp, max(0.0_wp, old - r_now / slope))
             end if
           end associate
         end if
-        c%coh(coh_prev:coh_prev + 1, k) = [old, g]
+        c%coh(coh_prev(2):coh_prev(2) + 1, k) = [old, g]
         changed = .true.
         old = f
-        call cohesive_elimination(c%w(:, k), f * c%coh(11, k), f * c%coh(12, k), c%coh(1:4, k), c%coh(5:8, k), &
+        call cohesive_elimination(c%w(:, k), f * c%coh(coh_k(2):coh_k(2) + 1, k), c%coh(1:4, k), c%coh(5:8, k), &
                                   solvable)
         c%wi(:, k) = 0.0_wp
-        if (solvable) c%wi(:, k) = inverse_block(c%coh(5, k), c%coh(6, k), c%coh(7, k), c%coh(8, k), c%mu(k))
+        if (solvable) c%wi(:, k) = inverse_block(c%coh(coh_wprime(2), k), c%coh(coh_wprime(2) + 1, k), c%coh(coh_wprime(2) + 2, k), &
+                                                   c%coh(coh_wprime(2) + 3, k), c%mu(k))
       end associate
     end do
   end subroutine damage_factors
@@ -568,6 +581,7 @@ contains
     real(wp) :: sums(7), maxes(2), fsum, qsum, vscale
     logical :: diverged
     integer(i8) :: tv0, tv1, rate
+    call require_2d(c)
     n = c%n
     diverged = .false.
     report%sweeps = 0
@@ -672,7 +686,7 @@ contains
     subroutine settle_damage()
       logical :: changed
       if (.not. solver%s%check_pass) return     ! u~ comes from the check pass
-      call damage_factors(solver, c, c%coh(coh_uend:coh_uend + 1, 1:n), changed)
+      call damage_factors(solver, c, c%coh(coh_uend(2):coh_uend(2) + 1, 1:n), changed)
       if (.not. changed) return
       report%converged = .false.
       if (solver%s%order /= 'shuffled') then
@@ -688,7 +702,7 @@ contains
       integer :: a, o
       real(wp) :: px, py
       a = c%cdb(k); o = c%anb(k)
-      call frame2_global(c%normal(1, k), c%normal(2, k), dt, dn, px, py)
+      call frame2_global(c%frame(1, 2, k), c%frame(2, 2, k), dt, dn, px, py)
       call rigid2_add_impulse(b%v(:, a), b%inv_mass(:, a), 1.0_wp, px, py, &
                               rigid2_moment(dt, dn, c%lever(1, k), c%lever(2, k)))
       call rigid2_add_impulse(b%v(:, o), b%inv_mass(:, o), -1.0_wp, px, py, &
@@ -831,7 +845,7 @@ contains
       integer, intent(in) :: k
       real(wp), intent(out) :: rec(pk_size)
       integer, intent(out) :: icoh
-      rec(1:2) = c%normal(:, k)
+      rec(1:2) = c%frame(:, 2, k)
       rec(3:6) = c%lever(:, k)
       rec(7:10) = c%w(:, k)
       rec(11:16) = c%wi(:, k)
@@ -886,11 +900,11 @@ contains
       call grow(solver%gside, 4, n)
       call grow(solver%ggm, 2, n)
       call grow(solver%gfirst, 2, n)
-      call grow(solver%gslot, 4, n)
+      call grow(solver%gslot, 2 * mesh_side_nodes(2), n)
       call grow(solver%gcoh, n)
       call grow(solver%gst, n)
       call grow(solver%gc, pk_size, n)
-      call grow(solver%gwt, 4, n)
+      call grow(solver%gwt, 2 * mesh_side_nodes(2), n)
       call grow(solver%gr, 2, n)
       ! Warm start of the contacts with a meshed side.
       do k = 1, n
@@ -913,7 +927,7 @@ contains
       integer, intent(in) :: k, sd
       real(wp), intent(in) :: dt, dn
       call rigid2_side_impulse(solver%bv(:, solver%bslot(side_body(c, k, sd))), merge(1.0_wp, -1.0_wp, sd == 1), &
-                               c%normal(1, k), c%normal(2, k), c%lever(2 * sd - 1:2 * sd, k), dt, dn)
+                               c%frame(1, 2, k), c%frame(2, 2, k), c%lever(2 * sd - 1:2 * sd, k), dt, dn)
     end subroutine inject_rigid_side
 
     !> Velocities of the meshed bodies from the contact impulses on their nodes.
@@ -925,7 +939,7 @@ contains
       imp = 0.0_wp
       do k = 1, n
         if (.not. c%active(k)) cycle
-        call frame2_global(c%normal(1, k), c%normal(2, k), c%r(1, k), c%r(2, k), p(1), p(2))
+        call frame2_global(c%frame(1, 2, k), c%frame(2, 2, k), c%r(1, k), c%r(2, k), p(1), p(2))
         do sd = 1, 2
           if (side_model(c, k, sd) /= bm_mesh) cycle
           sgn = merge(1.0_wp, -1.0_wp, sd == 1)

@@ -25,7 +25,7 @@ module fracas_output
                                tk_xksid, tk_alpxx
   use fracas_scene, only: scene_t, step_report_t
   use fracas_version, only: version_string, git_commit, build_type, compiler, compiler_flags
-  use fracas_contact_laws, only: law_czm, law_iqs_clb_g0
+  use fracas_contact_laws, only: law_czm, law_iqs_clb_g0, int_beta
   use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file, write_gpv_file
   use fracas_mailx, only: mailx_gauss_values
   use fracas_elements, only: el_ngauss_gpv, el_name, el_vtk_type, el_vtk_order
@@ -809,22 +809,29 @@ contains
     type(vtu_t) :: w
     real(wp), allocatable :: pts(:, :), nrm(:, :), reac(:, :), rn(:), rt(:), gap(:), beta(:)
     integer(ik), allocatable :: status(:), inter(:), law(:), cdb(:), anb(:)
-    integer :: k, n
+    integer :: k, n, j, nd
     logical :: czm
     n = sc%contacts%n
+    nd = sc%contacts%nd
     czm = any(sc%laws%kind == law_czm)
-    allocate (pts(2, n), nrm(3, n), reac(3, n), rn(n), rt(n), gap(n), beta(n), status(n), inter(n), law(n), cdb(n), anb(n))
+    allocate (pts(nd, n), nrm(3, n), reac(3, n), rn(n), rt(n), gap(n), beta(n), status(n), inter(n), law(n), cdb(n), &
+              anb(n))
     associate (c => sc%contacts)
       do k = 1, n
         pts(:, k) = c%point(:, k)
-        nrm(:, k) = [c%normal(:, k), 0.0_wp]
-        rt(k) = c%r(1, k) / sc%h
-        rn(k) = c%r(2, k) / sc%h
-        reac(:, k) = [rt(k) * c%normal(2, k) + rn(k) * c%normal(1, k), &
-                      -rt(k) * c%normal(1, k) + rn(k) * c%normal(2, k), 0.0_wp]
-        gap(k) = c%gap(k) + sc%h * c%u(2, k)
+        nrm(:, k) = 0.0_wp
+        nrm(1:nd, k) = c%frame(:, nd, k)
+        rt(k) = c%r(1, k) / sc%h         ! (3D: along t1)
+        rn(k) = c%r(nd, k) / sc%h
+        ! the reaction in global axes: frame times the local reaction
+        reac(:, k) = 0.0_wp
+        reac(1:nd, k) = c%frame(:, 1, k) * rt(k)
+        do j = 2, nd
+          reac(1:nd, k) = reac(1:nd, k) + c%frame(:, j, k) * (c%r(j, k) / sc%h)
+        end do
+        gap(k) = c%gap(k) + sc%h * c%u(nd, k)
         beta(k) = 0.0_wp
-        if (sc%laws(c%law(k))%kind == law_czm) beta(k) = c%internals(4, k)
+        if (sc%laws(c%law(k))%kind == law_czm) beta(k) = c%internals(int_beta(nd), k)
         status(k) = int(c%status(k), ik)
         inter(k) = int(c%inter(k), ik)
         law(k) = int(c%law(k), ik)
@@ -889,6 +896,7 @@ contains
     call write_dof_file(o%outbox//'/DOF.OUT.'//trim(num), sc%step, sc%time, dofs)
     if (sc%meshes%n > 0) call write_gpv_file(o%outbox//'/GPV.OUT.'//trim(num), sc%step, sc%time, gpv_records(sc))
     ! LMGC90 lists interactions type by type, numbered within their type.
+    if (sc%contacts%nd /= 2) call fatal('Vloc_Rloc.OUT: only 2D records are written')
     allocate (recs(sc%contacts%n))
     per_type = 0
     m = 0
@@ -921,7 +929,7 @@ contains
           recs(pos)%vlt = c%u(1, k)
           recs(pos)%vln = c%u(2, k)
           recs(pos)%gap = c%gap(k) + sc%h * c%u(2, k)
-          recs(pos)%normal = c%normal(:, k)
+          recs(pos)%normal = c%frame(:, 2, k)
           recs(pos)%coor = c%point(:, k)
           recs(pos)%has_geometry = .true.
           if (sc%laws(c%law(k))%kind == law_czm) then
@@ -1012,16 +1020,16 @@ contains
     call cpu_time(t0)
     n = sc%contacts%n
     associate (c => sc%contacts, t => sc%tactors)
-      gap_end = c%gap(1:n) + sc%h * c%u(2, 1:n)
+      gap_end = c%gap(1:n) + sc%h * c%u(c%nd, 1:n)
       if (any(sc%laws%kind == law_czm)) then
         call results_write_snapshot(o%h5, sc%step, sc%time, sc%bodies%x, sc%bodies%v, c%inter(1:n), &
           c%cdb(1:n), c%anb(1:n), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
-          c%status(1:n), c%law(1:n), c%normal(:, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end, &
+          c%status(1:n), c%law(1:n), c%frame(:, c%nd, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end, &
           internals=c%internals(:, 1:n), broken=broken_flags(sc))
       else
         call results_write_snapshot(o%h5, sc%step, sc%time, sc%bodies%x, sc%bodies%v, c%inter(1:n), &
           c%cdb(1:n), c%anb(1:n), t%rank(c%cd(1:n)), t%rank(c%an(1:n)), &
-          c%status(1:n), c%law(1:n), c%normal(:, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end)
+          c%status(1:n), c%law(1:n), c%frame(:, c%nd, 1:n), c%point(:, 1:n), c%r(:, 1:n) / sc%h, c%u(:, 1:n), gap_end)
       end if
     end associate
     if (sc%meshes%n > 0) call mesh_snapshot(o, sc)

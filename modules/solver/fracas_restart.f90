@@ -11,7 +11,7 @@ module fracas_restart
   use fracas_errors, only: fatal
   use fracas_strings, only: itoa, rtoa
   use fracas_ids, only: n_inter, n_status
-  use fracas_contacts, only: n_internals
+  use fracas_contact_laws, only: n_internals
   use fracas_bulk, only: gp_size
   use fracas_scene, only: scene_t
   use fracas_state_guard, only: scene_fault
@@ -237,11 +237,12 @@ contains
     call int1('history/an', st%an, n, 1, nt)
     call int1('history/sub', st%sub, n, 0, huge(1))
     call int1('history/status', st%status, n, 1, n_status)
-    call real2('history/force', st%force, 2, n)
-    call real2('history/point', st%point, 2, n)
+    ! per-contact vectors have the store's dimension
+    call real2('history/force', st%force, sc%contacts%nd, n)
+    call real2('history/point', st%point, sc%contacts%nd, n)
     if (sc%contacts%with_cohesion .neqv. allocated(st%internals)) &
       call bad('history/internals', 'the deck and the restart point disagree on cohesive laws')
-    if (allocated(st%internals)) call real2('history/internals', st%internals, n_internals, n)
+    if (allocated(st%internals)) call real2('history/internals', st%internals, n_internals(sc%contacts%nd), n)
     ! Broad-phase pairs: candidate, antagonist, interaction type, law.
     n = size(st%pair_alert)
     if (size(st%pairs, 1) /= 4 .or. size(st%pairs, 2) /= n) call bad('pairs', 'shape ('//itoa(size(st%pairs, 1))// &

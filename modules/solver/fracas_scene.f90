@@ -15,10 +15,11 @@ module fracas_scene
                           mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint, mailx_free
   use fracas_cracks, only: cracks_t, cracks_init, cracks_update
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
-  use fracas_contact_laws, only: law_t, law_from_input, law_czm, law_iqs_clb_g0, law_coupled_dof
+  use fracas_contact_laws, only: law_t, law_from_input, law_czm, law_iqs_clb_g0, law_coupled_dof, n_internals, &
+                                 int_jump, int_beta, int_tps
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
   use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts, &
-                             history_find_near, history_knows_pair, n_internals
+                             history_find_near, history_knows_pair
   use fracas_nlgs, only: nlgs_t, nlgs_settings_t, nlgs_report_t, nlgs_init, nlgs_prepare, nlgs_solve, &
                          nlgs_update_cohesive
   implicit none
@@ -186,9 +187,10 @@ contains
     call detection_init(sc%det, sc%tactors, deck%see_rules, nick)
     allocate (sc%q(3, nb))
 
-    ! History from Vloc_Rloc.INI: contactors named by (body, rank in body).
+    ! History from Vloc_Rloc.INI: contactors named by (body, rank in body). The
+    ! scene's body models (rbdy2, mailx) and its Vloc_Rloc records are 2D.
     nv = size(deck%vloc_ini)
-    allocate (cd(nv), an(nv), sub(nv), inter(nv), status(nv), force(2, nv), internals(n_internals, nv), &
+    allocate (cd(nv), an(nv), sub(nv), inter(nv), status(nv), force(2, nv), internals(n_internals(2), nv), &
               points(2, nv))
     nh = 0
     do k = 1, nv
@@ -207,7 +209,7 @@ contains
         points(:, nh) = r%coor
         internals(:, nh) = 0.0_wp
         if (allocated(r%internals)) then
-          pos = min(n_internals, size(r%internals))
+          pos = min(n_internals(2), size(r%internals))
           internals(1:pos, nh) = r%internals(1:pos)
         end if
       end associate
@@ -352,7 +354,7 @@ contains
           if (c%with_cohesion) c%internals(:, k) = sc%hist%internals(:, pos)
           if (swapped) then     ! the tangent t = (n2, -n1) turned with the normal
             c%r(1, k) = -c%r(1, k)
-            if (c%with_cohesion) c%internals(2, k) = -c%internals(2, k)
+            if (c%with_cohesion) c%internals(int_jump, k) = -c%internals(int_jump, k)
           end if
         else
           ! A contact seen first with an overlap was missed while approaching:
@@ -365,11 +367,17 @@ contains
           end if
           ! Interfaces present at the start of a simulation are glued (beta = 1);
           ! contacts made later start without cohesion.
-          if (c%with_cohesion) c%internals(:, k) = [c%length(k), 0.0_wp, 0.0_wp, &
-                                                    merge(1.0_wp, 0.0_wp, at_start), -99.0_wp]
+          if (c%with_cohesion) then
+            c%internals(:, k) = 0.0_wp
+            c%internals(1, k) = c%length(k)
+            c%internals(int_beta(c%nd), k) = merge(1.0_wp, 0.0_wp, at_start)
+            c%internals(int_tps(c%nd), k) = -99.0_wp
+          end if
           ! IQS_CLB_g0: the gap at the first step is the reference (LMGC90), 0 later
-          if (sc%laws(c%law(k))%kind == law_iqs_clb_g0) &
-            c%internals(:, k) = [merge(max(0.0_wp, c%gap(k)), 0.0_wp, at_start), 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]
+          if (sc%laws(c%law(k))%kind == law_iqs_clb_g0) then
+            c%internals(:, k) = 0.0_wp
+            c%internals(1, k) = merge(max(0.0_wp, c%gap(k)), 0.0_wp, at_start)
+          end if
         end if
       end do
       call lap(rep%detect_seconds)
@@ -486,7 +494,7 @@ contains
     associate (c => sc%contacts)
       do k = 1, c%n
         rt = c%r(1, k); rn = c%r(2, k)
-        call frame2_global(c%normal(1, k), c%normal(2, k), rt, rn, px, py)
+        call frame2_global(c%frame(1, 2, k), c%frame(2, 2, k), rt, rn, px, py)
         if (c%cdm(k) == bm_rigid) call rigid2_add_impulse(imp(:, c%cdb(k)), one, 1.0_wp, px, py, &
                                                           rigid2_moment(rt, rn, c%lever(1, k), c%lever(2, k)))
         if (c%anm(k) == bm_rigid) call rigid2_add_impulse(imp(:, c%anb(k)), one, -1.0_wp, px, py, &

@@ -47,7 +47,7 @@ program test_crack_definitions
   c%law(1:4) = 1
   c%internals(:, 1:4) = 0.0_wp
   c%internals(4, 1:4) = 1.0_wp
-  c%coh(coh_released, 1:4) = 0.0_wp
+  c%coh(coh_released(2), 1:4) = 0.0_wp
 
   ! Step 1: every point glued, nothing damaged.
   call cracks_update(cr, c, laws, .true., 1)
@@ -57,7 +57,7 @@ program test_crack_definitions
 
   ! Step 2: edge 1 has one broken point and one at beta 0.5; edge 2 both broken.
   c%internals(4, 1:4) = [0.0_wp, 0.5_wp, 0.0_wp, 0.0_wp]
-  c%coh(coh_released, 1:4) = [1.0_wp, 2.0_wp, 3.0_wp, 4.0_wp]
+  c%coh(coh_released(2), 1:4) = [1.0_wp, 2.0_wp, 3.0_wp, 4.0_wp]
   call cracks_update(cr, c, laws, .false., 2)
   call check_true('edge 1 (one point of two broken) is not broken', cr%edge_broken_step(1) == 0)
   call check_true('edge 2 (both points broken) broken at step 2', cr%edge_broken_step(2) == 2)
@@ -72,7 +72,7 @@ program test_crack_definitions
   c%cd(1:3) = [1, 3, 4]
   c%an(1:3) = [10, 11, 11]
   c%internals(4, 1:3) = 0.0_wp
-  c%coh(coh_released, 1:3) = 0.0_wp
+  c%coh(coh_released(2), 1:3) = 0.0_wp
   call cracks_update(cr, c, laws, .false., 3)
   call check_true('edge 1 broken at step 3 (its last glued point lost)', cr%edge_broken_step(1) == 3)
   call cracks_lengths(cr, broken, damaged, fam, nbroken, ndamaged)
