@@ -39,6 +39,7 @@ SENSITIVITY = {
     "lc2.0_dt0.25": dict(lc=2.0e-3, dt=0.25e-6, t_end=60e-6, every=8),
     "lc2.5_dt0.125": dict(lc=2.5e-3, dt=0.125e-6, t_end=60e-6, every=16),
     "lc1.5_dt0.25": dict(lc=1.5e-3, dt=0.25e-6, t_end=60e-6, every=8),
+    "lc1.0_dt0.25": dict(lc=1.0e-3, dt=0.25e-6, t_end=60e-6, every=8),
 }
 
 
