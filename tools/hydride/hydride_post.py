@@ -238,7 +238,8 @@ def summary(case_dir, deck_dir=None):
                 energies=en, cpu_seconds=run.cpu_seconds,             # fracas's own CPU time
                 steps_wall_seconds=float(np.sum(s["step_time"])),      # wall time of the steps (a loaded machine inflates it)
                 newton_iterations=float(np.mean(s["newton_iterations"])),
-                sweeps=float(np.mean(s["sweeps"])))
+                sweeps=float(np.mean(s["sweeps"])),
+                unconverged_steps=int(np.sum(s["converged"] == 0)))
 
 
 # --------------------------------------------------------------------------------------

@@ -58,7 +58,7 @@ def main():
                 if prev is not None and scheme == "implicit" and a.check is not None and abs(peak / prev - 1) > a.check:
                     bad += 1
                     change += " <- off"
-                unconverged = int((post.PlateRun(out, deck_dir=HERE / bonding).series["converged"] == 0).sum())
+                unconverged = s["unconverged_steps"]
                 if scheme == "implicit" and a.check is not None and unconverged:
                     bad += 1
                     change += f" <- {unconverged} steps unconverged"
