@@ -4,6 +4,7 @@
 !> never needs to know which law it is solving.
 module fracas_contact_laws
   use fracas_kinds, only: wp
+  use fracas_small_matrix, only: adjugate_3x3
   use fracas_deck, only: law_input_t
   use fracas_read_tact_behav, only: known_laws
   use fracas_errors, only: input_error
@@ -459,31 +460,13 @@ contains
         m3(:, i) = -w3(:, i) * kd(i)
         m3(i, i) = m3(i, i) + 1.0_wp
       end do
-      call inverse_3x3(m3, a3)
+      call adjugate_3x3(m3, a3, det)
+      a3 = a3 / det
       amat = reshape(transpose(a3), [9])
       w3 = matmul(a3, w3)
       wprime = reshape(transpose(w3), [9])
-      det = w3(1, 1) * (w3(2, 2) * w3(3, 3) - w3(2, 3) * w3(3, 2)) - w3(1, 2) * (w3(2, 1) * w3(3, 3) - &
-            w3(2, 3) * w3(3, 1)) + w3(1, 3) * (w3(2, 1) * w3(3, 2) - w3(2, 2) * w3(3, 1))
+      call adjugate_3x3(w3, a3, det)            ! (det W'; A is already in amat)
       solvable = det > 1.0e-30_wp * max(w3(3, 3), tiny(1.0_wp))**3 .and. w3(3, 3) > 1.0e-18_wp
     end if
   end subroutine cohesive_elimination
-
-  !> Inverse of a 3 x 3 matrix by its cofactors.
-  pure subroutine inverse_3x3(a, inv)
-    real(wp), intent(in) :: a(3, 3)
-    real(wp), intent(out) :: inv(3, 3)
-    real(wp) :: det
-    inv(1, 1) = a(2, 2) * a(3, 3) - a(2, 3) * a(3, 2)
-    inv(1, 2) = a(1, 3) * a(3, 2) - a(1, 2) * a(3, 3)
-    inv(1, 3) = a(1, 2) * a(2, 3) - a(1, 3) * a(2, 2)
-    inv(2, 1) = a(2, 3) * a(3, 1) - a(2, 1) * a(3, 3)
-    inv(2, 2) = a(1, 1) * a(3, 3) - a(1, 3) * a(3, 1)
-    inv(2, 3) = a(1, 3) * a(2, 1) - a(1, 1) * a(2, 3)
-    inv(3, 1) = a(2, 1) * a(3, 2) - a(2, 2) * a(3, 1)
-    inv(3, 2) = a(1, 2) * a(3, 1) - a(1, 1) * a(3, 2)
-    inv(3, 3) = a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)
-    det = a(1, 1) * inv(1, 1) + a(1, 2) * inv(2, 1) + a(1, 3) * inv(3, 1)
-    inv = inv / det
-  end subroutine inverse_3x3
 end module fracas_contact_laws

@@ -2,6 +2,7 @@
 !> procedures on one contact: shared by the scene NLGS and the FCLib tools.
 module fracas_local_solver
   use fracas_kinds, only: wp
+  use fracas_small_matrix, only: adjugate_3x3
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw
   use fracas_contact_laws, only: coh_factor, coh_uend, coh_av, coh_k, coh_wprime
   use fracas_contacts, only: wi_size, mesh_side_nodes
@@ -382,28 +383,18 @@ contains
   !> so the stick trial stays finite.
   pure function inverse_block_3d(w) result(wi)
     real(wp), intent(in) :: w(9)
-    real(wp) :: wi(9), a(9), c(9), det, scale
-    integer :: attempt
-    a = w
+    real(wp) :: wi(9), a(3, 3), adj(3, 3), det, scale
+    integer :: attempt, i
+    a = reshape(w, [3, 3])
     scale = max(abs(w(1)), abs(w(5)), abs(w(9)), tiny(1.0_wp))
     do attempt = 1, 2
-      c(1) = a(5) * a(9) - a(8) * a(6)
-      c(2) = -(a(2) * a(9) - a(8) * a(3))
-      c(3) = a(2) * a(6) - a(5) * a(3)
-      c(4) = -(a(4) * a(9) - a(7) * a(6))
-      c(5) = a(1) * a(9) - a(7) * a(3)
-      c(6) = -(a(1) * a(6) - a(4) * a(3))
-      c(7) = a(4) * a(8) - a(7) * a(5)
-      c(8) = -(a(1) * a(8) - a(7) * a(2))
-      c(9) = a(1) * a(5) - a(4) * a(2)
-      det = a(1) * c(1) + a(4) * c(2) + a(7) * c(3)
+      call adjugate_3x3(a, adj, det)
       if (abs(det) > 1.0e-13_wp * scale**3) exit
-      a(1) = a(1) + 1.0e-10_wp * scale
-      a(5) = a(5) + 1.0e-10_wp * scale
-      a(9) = a(9) + 1.0e-10_wp * scale
+      do i = 1, 3
+        a(i, i) = a(i, i) + 1.0e-10_wp * scale
+      end do
     end do
-    ! inverse(i,j) = cofactor(j,i) / det; c(i + 3(j-1)) holds cofactor(j,i) already
-    wi = c / det
+    wi = reshape(adj, [9]) / det
   end function inverse_block_3d
 
   !> Exact local solver of one 3D Signorini–Coulomb contact: u = qf + W r,

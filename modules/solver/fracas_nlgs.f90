@@ -558,8 +558,8 @@ contains
         c%coh(coh_prev(2):coh_prev(2) + 1, k) = [old, g]
         changed = .true.
         old = f
-        call cohesive_elimination(c%w(:, k), f * c%coh(coh_k(2):coh_k(2) + 1, k), c%coh(1:4, k), c%coh(5:8, k), &
-                                  solvable)
+        call cohesive_elimination(c%w(:, k), f * c%coh(coh_k(2):coh_k(2) + 1, k), c%coh(1:4, k), &
+                                  c%coh(coh_wprime(2):coh_wprime(2) + 3, k), solvable)
         c%wi(:, k) = 0.0_wp
         if (solvable) c%wi(:, k) = inverse_block(c%coh(coh_wprime(2), k), c%coh(coh_wprime(2) + 1, k), c%coh(coh_wprime(2) + 2, k), &
                                                    c%coh(coh_wprime(2) + 3, k), c%mu(k))
