@@ -222,16 +222,21 @@ contains
   !> inverse masses and lever arms, meshed sides from their bodies' contact
   !> compliance), velocities at the beginning of the step, and the local
   !> problem each contact's law poses (shift, friction, cohesion).
-  subroutine nlgs_prepare(solver, c, b, m, laws, h)
+  subroutine nlgs_prepare(solver, c, b, m, laws, h, newton_again)
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
     type(rbdy2_t), intent(in) :: b
     type(mailx_t), intent(inout) :: m
     type(law_t), intent(in) :: laws(:)
     real(wp), intent(in) :: h
+    !> a further Newton iteration of the same step (same contacts): the damage
+    !> factors start from the last iteration's instead of 1
+    logical, intent(in), optional :: newton_again
     integer :: k, a, o
-    real(wp) :: weff(4), coh(coh_size(2)), internals(n_internals(2))
-    logical :: active, cohesive, solvable
+    real(wp) :: weff(4), coh(coh_size(2)), internals(n_internals(2)), factor
+    logical :: active, cohesive, solvable, carry
+    carry = .false.
+    if (present(newton_again)) carry = newton_again .and. solver%s%damage_midpoint
     call require_2d(c)
     if (c%with_mesh) call mesh_blocks(solver, c, m)
     if (.not. allocated(solver%cz)) solver%cz = laws%czm
@@ -255,12 +260,19 @@ contains
                              cohesive, coh, weff, solvable)
       c%active(k) = active
       c%cohesive(k) = cohesive
+      factor = 1.0_wp
+      if (carry .and. c%cohesive(k)) factor = c%coh(coh_factor(2), k)
+      c%cohesive(k) = cohesive
       if (cohesive) then
         if (solver%s%damage_in_step .and. laws(c%law(k))%kind == law_czm) coh(coh_law(2)) = c%law(k)
         c%coh(:, k) = coh
       end if
-      c%wi(:, k) = 0.0_wp
-      if (solvable) c%wi(:, k) = inverse_block(weff(1), weff(2), weff(3), weff(4), c%mu(k))
+      if (cohesive .and. nint(coh(coh_law(2))) /= 0 .and. factor /= 1.0_wp) then
+        call set_damage_factor(c, k, factor)      ! (also sets wi)
+      else
+        c%wi(:, k) = 0.0_wp
+        if (solvable) c%wi(:, k) = inverse_block(weff(1), weff(2), weff(3), weff(4), c%mu(k))
+      end if
       if (.not. c%active(k)) then
         c%r(:, k) = 0.0_wp
         c%status(k) = st_noctc   ! as LMGC90 reports a contact the law leaves open
@@ -497,7 +509,7 @@ contains
     logical, intent(out) :: changed
     integer :: k, law
     real(wp) :: u1(2), beta0, beta1, f, g, r_now, r_prev, slope
-    logical :: solvable, bracketed
+    logical :: bracketed
     changed = .false.
     do k = 1, c%n
       if (.not. c%cohesive(k)) cycle
@@ -557,15 +569,24 @@ contains
         end if
         c%coh(coh_prev(2):coh_prev(2) + 1, k) = [old, g]
         changed = .true.
-        old = f
-        call cohesive_elimination(c%w(:, k), f * c%coh(coh_k(2):coh_k(2) + 1, k), c%coh(1:4, k), &
-                                  c%coh(coh_wprime(2):coh_wprime(2) + 3, k), solvable)
-        c%wi(:, k) = 0.0_wp
-        if (solvable) c%wi(:, k) = inverse_block(c%coh(coh_wprime(2), k), c%coh(coh_wprime(2) + 1, k), c%coh(coh_wprime(2) + 2, k), &
-                                                   c%coh(coh_wprime(2) + 3, k), c%mu(k))
       end associate
+      call set_damage_factor(c, k, f)
     end do
   end subroutine damage_factors
+
+  !> Cohesive contact k's spring factor f (over beta0^k): A, W' and W'^-1 for it.
+  subroutine set_damage_factor(c, k, f)
+    type(contacts_t), intent(inout) :: c
+    integer, intent(in) :: k
+    real(wp), intent(in) :: f
+    logical :: solvable
+    c%coh(coh_factor(2), k) = f
+    call cohesive_elimination(c%w(:, k), f * c%coh(coh_k(2):coh_k(2) + 1, k), c%coh(1:4, k), &
+                              c%coh(coh_wprime(2):coh_wprime(2) + 3, k), solvable)
+    c%wi(:, k) = 0.0_wp
+    if (solvable) c%wi(:, k) = inverse_block(c%coh(coh_wprime(2), k), c%coh(coh_wprime(2) + 1, k), c%coh(coh_wprime(2) + 2, k), &
+                                               c%coh(coh_wprime(2) + 3, k), c%mu(k))
+  end subroutine set_damage_factor
 
   !> Solve the step's contact problem with the cohesive spring factors frozen. On
   !> entry b%v = vfree (rigid), m%vfree (meshes), and c%r holds the warm start; on

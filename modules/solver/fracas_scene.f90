@@ -403,7 +403,7 @@ contains
         sc%solver%s%max_checks = checks_left
         call lap(rep%bodies_seconds)
         b%v = b%vfree
-        call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h)
+        call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h, newton_again=.true.)
         call lap(rep%prepare_seconds)
         call nlgs_solve(sc%solver, c, b, m, newton_rep)
         call lap(rep%solve_seconds)
