@@ -28,29 +28,30 @@ from fracas_tools.checks import Checker  # noqa: E402
 # / 15 % strong, HY_MA share 76 % weak / 31 % strong, balance error 8e-4 of the work. The
 # margin asks for a clear difference (the campaign of doc/hydrided_zircaloy.md gives the
 # spread over seeds); the audit tolerance covers the NLGS tolerance (1e-4) and the Newton
-# tolerance of the J2 matrix accumulated over 300 steps.
+# tolerance of the J2 matrix accumulated over 600 steps.
 MARGIN = 0.10
 AUDIT_TOL = 2e-3
 FAMILY_SUM_TOL = 1e-9
 
 # The tighter run: each deck with its run control (damage within the step, steps cut
-# where a crack runs: crack_step_limit 0.25) but dt/2 = 1e-10 s and 600 steps
-# (test_cases/validation/hydrided_plate/dt_study.py; Fracas 2026-11-27): peak stress
-# (MPa), macro-crack shares, damage energy per family (J/m).
+# where a crack runs: crack_step_limit 0.25) but dt/2 = 5e-11 s and 1200 steps
+# (test_cases/validation/hydrided_plate/dt_study.py; Fracas 2026-11-27, commit 5625aa7):
+# peak stress (MPa), macro-crack shares, damage energy per family (J/m).
 REFERENCE = {
-    "weak": dict(peak=474.07, shares=dict(HY_HY=0.000, HY_MA=0.716, MA_MA=0.284),
-                 damage=dict(HY_HY=1.075e-7, HY_MA=6.635e-5, MA_MA=2.161e-4)),
-    "strong": dict(peak=707.33, shares=dict(HY_HY=0.133, HY_MA=0.421, MA_MA=0.446),
-                   damage=dict(HY_HY=7.351e-5, HY_MA=2.413e-4, MA_MA=3.275e-4)),
+    "weak": dict(peak=475.40, shares=dict(HY_HY=0.000, HY_MA=0.716, MA_MA=0.284),
+                 damage=dict(HY_HY=1.796e-7, HY_MA=6.638e-5, MA_MA=2.170e-4)),
+    "strong": dict(peak=708.50, shares=dict(HY_HY=0.143, HY_MA=0.451, MA_MA=0.406),
+                   damage=dict(HY_HY=7.477e-5, HY_MA=2.323e-4, MA_MA=3.625e-4)),
 }
-# Measured at the deck's dt against REFERENCE: peak -0.02 % weak, -0.98 % strong (the
-# strong plate's peak, before its crack runs, moves with the bulk's time step: doc/czm.md
-# 9); shares within 0.009; family energies within 0.009 of the run's total damage energy.
-# Without the step control: -0.71 % and -1.09 %, shares within 0.072, energies within 0.14.
-# Tolerances: those with headroom, so that a bug that moves a figure by more than the
-# scheme's own time-step change turns this red (LMGC90's explicit update, first order
-# in dt, is 21 % and 19 % above on the peaks at the deck's dt: doc/czm.md 3.2).
-TOLERANCES = dict(peak=0.02, share=0.05, damage_of_total=0.10)
+# Measured at the deck's dt (1e-10 s: a wave crosses an element in about two steps)
+# against REFERENCE: peak -0.28 % weak, -0.17 % strong; shares within 0.040; family
+# energies within 0.053 of the run's total damage energy. At the former step (2e-10 s) the
+# strong plate's peak was 1.0 % below (the bulk's time discretization: doc/czm.md 9).
+# Tolerances: issue 17's 1 % on the peak; shares and energies with headroom over the
+# scheme's own time-step change, so that a bug that moves a figure by more turns this red
+# (LMGC90's explicit update, first order in dt, is about 20 % above on the peaks at a
+# step of this size: doc/czm.md 3.2).
+TOLERANCES = dict(peak=0.01, share=0.05, damage_of_total=0.10)
 
 
 def main(weak_dir, strong_dir):

@@ -23,7 +23,8 @@ HERE = Path(__file__).resolve().parent
 from fracas_tools.scripts import load  # noqa: E402
 post = load(HERE.parents[2] / "tools" / "hydride" / "hydride_post.py")
 
-DT, STEPS = 2e-10, 300      # the decks' run control (COMMAND.DAT)
+gen = load(HERE / "gen.py")
+DT, STEPS = gen.DT, gen.STEPS      # the decks' run control (COMMAND.DAT, written by gen.py)
 
 
 def main():

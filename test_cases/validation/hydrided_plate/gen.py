@@ -11,7 +11,7 @@ hp = load(HERE.parents[2] / "tools" / "hydride" / "hydride_plate.py")
 
 GEOMETRY = hp.Geometry(width=16e-6, height=16e-6, thickness=(2e-6, 2.2e-6), aspect=(2.5, 3.5),
                        clearance=0.8e-6, notch=2.5e-6)
-SEED, H, DT, STEPS = 2, 1e-6, 2e-10, 300
+SEED, H, DT, STEPS = 2, 1e-6, 1e-10, 600
 
 
 
