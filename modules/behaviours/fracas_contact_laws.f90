@@ -9,7 +9,7 @@ module fracas_contact_laws
   use fracas_read_tact_behav, only: known_laws
   use fracas_errors, only: input_error
   use fracas_ids, only: st_slifw, st_slibw, st_cslfw, st_cslbw
-  use fracas_czm, only: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo, czm_beta_power
+  use fracas_czm, only: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo, czm_abp, czm_abp_corners, czm_beta_power
   implicit none
   private
   public :: law_t, law_from_input, law_friction, law_shift, law_local_problem, &
@@ -130,7 +130,7 @@ contains
       call set_czm(czm_mp3)
       law%czm%smax = param(5)
       law%czm%w = param(6)
-    case ('IQS_MAL_CZM', 'MAL_CZM', 'IQS_TH_CZM', 'TH_CZM', 'IQS_EXPO_CZM', 'EXPO_CZM')
+    case ('IQS_MAL_CZM', 'MAL_CZM', 'IQS_TH_CZM', 'TH_CZM', 'IQS_EXPO_CZM', 'EXPO_CZM', 'IQS_ABP_CZM', 'ABP_CZM')
       select case (trim(inp%name))
       case ('IQS_MAL_CZM', 'MAL_CZM')
         call set_czm(czm_mal)
@@ -138,6 +138,11 @@ contains
         call set_czm(czm_th)
         law%czm%dp1 = param(9)
         law%czm%dp2 = param(10)
+      case ('IQS_ABP_CZM', 'ABP_CZM')
+        call set_czm(czm_abp)
+        law%czm%du1 = param(9)
+        law%czm%du2 = param(10)
+        law%czm%phi = param(11)
       case default
         call set_czm(czm_expo)
         law%czm%eta = param(9)
@@ -169,6 +174,7 @@ contains
         if (law%czm%g2 <= 0.0_wp) call bad(8, "energy G2 of law '"//trim(inp%nickname)//"' must be > 0")
         if (law%czm%family == czm_expo .and. (law%czm%eta <= 0.0_wp .or. law%czm%eta >= 1.0_wp)) &
           call bad(9, "eta of law '"//trim(inp%nickname)//"' must be in (0, 1)")
+        if (law%czm%family == czm_abp) call check_abp()
       end select
     end if
     if (law%kind == law_elastic_repell .or. law%kind == law_visco_elastic_repell) then
@@ -190,6 +196,30 @@ contains
 
     !> Input error at parameter i (its line and column when the reader recorded
     !> them; a single-parameter law repeats the value: clamp i).
+    !> ABP: phi in [0, 1] and, in both pure modes, du beyond the elastic opening s/c and
+    !> corners (czm_abp_corners) that needed no clamp: the envelope's area is then G.
+    subroutine check_abp()
+      real(wp) :: s, g, c, di, dp, sp, du, area
+      integer :: mode
+      character(len=2) :: tag
+      if (law%czm%phi < 0.0_wp .or. law%czm%phi > 1.0_wp) &
+        call bad(11, "phi of law '"//trim(inp%nickname)//"' must be in [0, 1]")
+      do mode = 1, 2
+        s = merge(law%czm%s1, law%czm%s2, mode == 1)
+        g = merge(law%czm%g1, law%czm%g2, mode == 1)
+        c = merge(law%czm%cn, law%czm%ct, mode == 1)
+        di = s / c
+        tag = merge('I ', 'II', mode == 1)
+        call czm_abp_corners(law%czm, real(mode - 1, wp), s, g, di, dp, sp, du)
+        if (du <= di) call bad(8 + mode, "du"//achar(48 + mode)//" of law '"//trim(inp%nickname)// &
+                                         "' must exceed the elastic opening s/c of mode "//trim(tag))
+        area = 0.5_wp * (s * dp - sp * di + sp * du)
+        if (abs(area - g) > 1.0e-9_wp * g) call bad(8 + mode, "law '"//trim(inp%nickname)//"': in mode "// &
+          trim(tag)//" its G, s, du and phi make no tri-linear envelope of area G (the corner dp = "// &
+          "(2 G phi + sp s/c)/s, sp = 2 G (1 - phi)/du, must lie between s/c and du)")
+      end do
+    end subroutine check_abp
+
     subroutine bad(i, msg)
       integer, intent(in) :: i
       character(len=*), intent(in) :: msg

@@ -1,17 +1,17 @@
 !> Frictional cohesive zone laws (the paper's equations 4-5): the cohesive
 !> traction sigma = beta^k C [u] with C = diag(ct, cn), k = 2 for the Monerie–
-!> Acary/RCC law (MAC) and k = 1 for the envelope laws (MP3, MAL, TH, EXPO);
+!> Acary/RCC law (MAC) and k = 1 for the envelope laws (MP3, MAL, TH, EXPO, ABP);
 !> beta in [0, 1] never grows. Each law's beta update is one pure function.
 !> Only opening (<un>+) and sliding drive damage.
 module fracas_czm
   use fracas_kinds, only: wp
   implicit none
   private
-  public :: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo, czm_beta_update, czm_beta_power, &
+  public :: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo, czm_abp, czm_abp_corners, czm_beta_update, czm_beta_power, &
             czm_stored_energy, beta_broken, czm_damage_energy, czm_step_dissipation, czm_step_factor, &
             czm_softening_length
 
-  integer, parameter :: czm_mac = 1, czm_mp3 = 2, czm_mal = 3, czm_th = 4, czm_expo = 5
+  integer, parameter :: czm_mac = 1, czm_mp3 = 2, czm_mal = 3, czm_th = 4, czm_expo = 5, czm_abp = 6
   !> Below this beta the interface is broken (beta set to 0), as in LMGC90.
   real(wp), parameter :: beta_broken = 1.0e-12_wp
 
@@ -24,6 +24,8 @@ module fracas_czm
     real(wp) :: g1 = 0.0_wp, g2 = 0.0_wp      !< fracture energies in mode I and II (J/m^2)
     real(wp) :: dp1 = 0.0_wp, dp2 = 0.0_wp    !< TH: end of the plateau in mode I and II (m)
     real(wp) :: eta = 0.0_wp                  !< EXPO: residual stress ratio of the cut-off
+    real(wp) :: du1 = 0.0_wp, du2 = 0.0_wp    !< ABP: full-separation opening in mode I and II (m)
+    real(wp) :: phi = 0.0_wp                  !< ABP: share of G on the first softening branch
     logical :: iqs = .true.                   !< IQS variant: an initial overlap is forgiven
     real(wp) :: friction_power = 1.0_wp       !< mu(beta) = mu (1 - beta)^p
   end type czm_t
@@ -75,7 +77,7 @@ contains
   pure real(wp) function czm_beta_update(p, beta_old, ut, un, h) result(beta)
     type(czm_t), intent(in) :: p
     real(wp), intent(in) :: beta_old, ut, un, h
-    real(wp) :: y, unp, d, m, s, g, c, di, dk, dp, du, phi
+    real(wp) :: y, unp, d, m, s, g, c, di, dk, dp, du, phi, sp
     beta = beta_old
     if (beta_old <= 0.0_wp) return
     unp = max(un, 0.0_wp)
@@ -109,6 +111,16 @@ contains
         else
           beta = 0.0_wp
         end if
+      case (czm_abp)
+        ! Tri-linear: (di, s) to (dp, sp) to (du, 0); area g.
+        call czm_abp_corners(p, m, s, g, di, dp, sp, du)
+        if (d <= dp) then
+          beta = min(beta_old, (s + (sp - s) * (d - di) / (dp - di)) / (c * d))
+        else if (d < du) then
+          beta = min(beta_old, sp * (du - d) / ((du - dp) * c * d))
+        else
+          beta = 0.0_wp
+        end if
       case (czm_expo)
         ! Exponential softening s exp(phi (di - d)), cut off at du.
         phi = s / (g - 0.5_wp * s * di)
@@ -132,7 +144,7 @@ contains
   pure real(wp) function czm_damage_energy(p, beta, ut, un) result(e)
     type(czm_t), intent(in) :: p
     real(wp), intent(in) :: beta, ut, un
-    real(wp) :: c, s, g, di, m, d, dk, x, dp, du, phi, f, lo, hi
+    real(wp) :: c, s, g, di, m, d, dk, x, dp, du, phi, f, lo, hi, sp, a
     integer :: it
     if (p%family == czm_mac) then
       e = p%w * (1.0_wp - beta)
@@ -157,6 +169,19 @@ contains
         e = 0.5_wp * s * di + s * (dp - di) + s * ((d - dp) - 0.5_wp * (d - dp)**2 / (du - dp))
       end if
       e = e - 0.5_wp * beta * c * d**2
+    case (czm_abp)
+      call czm_abp_corners(p, m, s, g, di, dp, sp, du)
+      if (beta <= 0.0_wp) then
+        e = g
+      else if (dp > di .and. beta * c * dp >= sp) then
+        a = (sp - s) / (dp - di)                          ! on the first branch: beta c d = s + a (d - di)
+        d = (s - a * di) / (beta * c - a)
+        e = 0.5_wp * s * di + 0.5_wp * (d - di) * (s + beta * c * d) - 0.5_wp * beta * c * d**2
+      else
+        d = sp * du / (beta * c * (du - dp) + sp)         ! on the second: beta c d = sp (du - d)/(du - dp)
+        e = 0.5_wp * s * di + 0.5_wp * (dp - di) * (s + sp) + 0.5_wp * (d - dp) * (sp + beta * c * d) &
+            - 0.5_wp * beta * c * d**2
+      end if
     case default
       ! EXPO: beta c d = s exp(phi (di - d)) on [di, du), cut to 0 at du; the opening of
       ! beta by Newton on log(c d beta / s) + phi (d - di) = 0 (increasing in d), bracketed.
@@ -227,9 +252,24 @@ contains
     if (p%family == czm_mac .and. p%visco > 0.0_wp) lo = 0.0_wp
     f = min(beta0**k, max(lo, work / den))
   end function czm_step_factor
+
+  !> The corners of the ABP law's tri-linear envelope in the mode of mixity m (strength
+  !> s, energy g, di = s/c from envelope): full separation du (blended linearly like the
+  !> other parameters), the second corner (dp, sp) with sp = 2 g (1 - phi)/du and
+  !> dp = (2 g phi + sp di)/s, so that the area is g; dp kept in [di, du] (the deck's
+  !> pure modes are checked to need no clamp, law_from_input).
+  pure subroutine czm_abp_corners(p, m, s, g, di, dp, sp, du)
+    type(czm_t), intent(in) :: p
+    real(wp), intent(in) :: m, s, g, di
+    real(wp), intent(out) :: dp, sp, du
+    du = (1.0_wp - m) * p%du1 + m * p%du2
+    sp = 2.0_wp * g * (1.0_wp - p%phi) / du
+    dp = min(du, max(di, (2.0_wp * g * p%phi + sp * di) / s))
+  end subroutine czm_abp_corners
+
   !> The opening over which a law softens in the mode of the jump (ut, un), the
   !> scale of crack_step_limit (doc/czm.md §9): from the end of its linear branch
-  !> to full separation (MP3, MAL, TH); EXPO, whose cut-off lies far out, the
+  !> to full separation (MP3, MAL, TH, ABP); EXPO, whose cut-off lies far out, the
   !> length 1/phi over which its traction falls by e; MAC, whose damage only
   !> tends to 0 (traction w^2 / (c d^3) past the opening sqrt(w / c) where damage
   !> starts, c the mode's stiffness), that opening or d / 3, over which the
@@ -237,7 +277,7 @@ contains
   pure real(wp) function czm_softening_length(p, ut, un) result(l)
     type(czm_t), intent(in) :: p
     real(wp), intent(in) :: ut, un
-    real(wp) :: c, s, g, di, m, dp
+    real(wp) :: c, s, g, di, m, dp, sp, du
     call envelope(p, ut, un, c, s, g, di, m)
     select case (p%family)
     case (czm_mac)
@@ -247,6 +287,9 @@ contains
     case (czm_th)
       dp = max(di, (1.0_wp - m) * p%dp1 + m * p%dp2)
       l = (2.0_wp * g / s - dp + di) - dp
+    case (czm_abp)
+      call czm_abp_corners(p, m, s, g, di, dp, sp, du)
+      l = du - di
     case default
       l = (g - 0.5_wp * s * di) / s
     end select

@@ -48,8 +48,8 @@ module fracas_read_tact_behav
     law_spec_t('IQS_TH_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/dp1 dp2', .true.), &
     law_spec_t('EXPO_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/eta', .true.), &
     law_spec_t('IQS_EXPO_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/eta', .true.), &
-    law_spec_t('ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi', .false.), &
-    law_spec_t('IQS_ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi', .false.), &
+    law_spec_t('ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi', .true.), &
+    law_spec_t('IQS_ABP_CZM', 'dfric sfric/cn ct/s1 s2/G1 G2/du1 du2/phi', .true.), &
     law_spec_t('IQS_STICK', '', .false.), &
     law_spec_t('COUPLED_DOF', '', .true.), &
     law_spec_t('GAP_SGR_STICK', '', .false.), &

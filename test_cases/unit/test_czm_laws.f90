@@ -20,19 +20,23 @@
 !> * EXPO (lmgc90.md §5.3): linear to di = s/c, then s exp(phi (di - d)),
 !>   phi = s/(G - s di/2), cut to 0 at du = di - ln(eta)/phi: peak s, work
 !>   s di/2 + (G - s di/2)(1 - eta) = G - eta (G - s di/2).
+!> * ABP (tri-linear, lmgc90.md §5.3): linear to (di, s), di = s/c, then to (dp, sp), then
+!>   to (du, 0), sp = 2G (1 - phi)/du, dp = (2 G phi + sp di)/s: peak s, work G.
+!> And for every envelope law the damage energy D(beta) (czm_damage_energy, a closed
+!> form per law) against the walk's work up to d less the stored 1/2 beta c d^2.
 !> Irreversibility: beta never grows; on unloading beta is frozen and the stress
 !> goes back along the secant beta^k c d; reloading follows the secant until the
 !> envelope, then damage resumes.
 program test_czm_laws
   use fracas_kinds, only: wp
-  use fracas_czm, only: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo, czm_beta_update, &
-                        czm_beta_power, czm_stored_energy, beta_broken, czm_step_factor
+  use fracas_czm, only: czm_t, czm_mac, czm_mp3, czm_mal, czm_th, czm_expo, czm_abp, czm_beta_update, &
+                        czm_beta_power, czm_stored_energy, beta_broken, czm_step_factor, czm_damage_energy
   use fracas_testing, only: check_close, check_true, test_finish
   implicit none
   integer, parameter :: opening = 1, sliding = 2
   real(wp), parameter :: h = 1.0e-4_wp
   type(czm_t) :: p
-  real(wp) :: energy, peak, dpeak, beta, beta2, d0, di, dk, dp, du, phi, ref, y, growth
+  real(wp) :: energy, peak, dpeak, beta, beta2, d0, di, dk, dp, du, phi, ref, y, growth, sp
   real(wp), allocatable :: path(:)
   integer :: i
 
@@ -153,6 +157,7 @@ program test_czm_laws
   call check_true('MAL: beta never grows', growth <= 0.0_wp)
   call cycle_check(p, sliding, (di + 0.3_wp * dk) / 3.0_wp, 'MAL')
   call step_factor_bracket(p, p%s1 / p%cn, 'MAL')
+  call damage_energy_check(p, opening, [(p%s1 / p%cn * (1.0_wp + 0.5_wp * i), i = 1, 12)], 'MAL')
 
   ! ------------------------------------------------------------------ TH
   p = czm_t(family=czm_th, cn=1.0e11_wp, ct=5.0e10_wp, s1=1.0e6_wp, s2=2.0e6_wp, g1=40.0_wp, g2=100.0_wp, &
@@ -175,6 +180,7 @@ program test_czm_laws
   call check_close('TH mode II work / G2', energy / p%g2, 1.0_wp, 1e-9_wp)
   call check_true('TH: beta never grows', growth <= 0.0_wp)
   call cycle_check(p, opening, p%s1 / p%cn, 'TH')
+  call damage_energy_check(p, opening, [(p%s1 / p%cn * (1.0_wp + 0.5_wp * i), i = 1, 12)], 'TH')
   call step_factor_bracket(p, p%s1 / p%cn, 'TH')
 
   ! ------------------------------------------------------------------ EXPO
@@ -212,10 +218,70 @@ program test_czm_laws
   beta = czm_beta_update(p, 1.0_wp, 0.0_wp, 1.01_wp * du, h)
   beta2 = czm_beta_update(p, beta, 0.0_wp, 0.1_wp * di, h)
   call check_true('EXPO broken beyond du and stays broken', beta == 0.0_wp .and. beta2 == 0.0_wp)
+  call damage_energy_check(p, opening, [(di * (1.0_wp + 0.5_wp * i), i = 1, 12)], 'EXPO')
+
+  ! ------------------------------------------------------------------ ABP
+  p = czm_t(family=czm_abp, cn=1.0e11_wp, ct=5.0e10_wp, s1=1.0e6_wp, s2=2.0e6_wp, g1=40.0_wp, g2=100.0_wp, &
+            du1=6.0e-5_wp, du2=1.5e-4_wp, phi=0.5_wp)
+  di = p%s1 / p%cn
+  sp = 2.0_wp * p%g1 * (1.0_wp - p%phi) / p%du1
+  dp = (2.0_wp * p%g1 * p%phi + sp * di) / p%s1
+  du = p%du1
+  path = [uniform(0.0_wp, di, 2000), uniform(di, dp, 20000), uniform(dp, du, 20000), uniform(du, 2.0_wp * du, 100)]
+  call walk(p, opening, path, energy, peak, dpeak, growth)
+  call check_close('ABP mode I peak / s1', peak / p%s1, 1.0_wp, 1e-12_wp)
+  call check_close('ABP mode I work / G1', energy / p%g1, 1.0_wp, 1e-9_wp)
+  call check_close('ABP mode I sigma(dp) / sp', czm_beta_update(p, 1.0_wp, 0.0_wp, dp, h) * p%cn * dp / sp, &
+                   1.0_wp, 1e-13_wp)
+  call check_close('ABP mode I sigma((dp + du)/2) / (sp/2)', czm_beta_update(p, 1.0_wp, 0.0_wp, 0.5_wp * (dp + du), h) &
+                   * p%cn * 0.5_wp * (dp + du) / (0.5_wp * sp), 1.0_wp, 1e-13_wp)
+  call damage_energy_check(p, opening, [(di + (1.1_wp * du - di) * i / 12.0_wp, i = 1, 12)], 'ABP')
+  di = p%s2 / p%ct
+  sp = 2.0_wp * p%g2 * (1.0_wp - p%phi) / p%du2
+  dp = (2.0_wp * p%g2 * p%phi + sp * di) / p%s2
+  du = p%du2
+  path = [uniform(0.0_wp, di, 2000), uniform(di, dp, 20000), uniform(dp, du, 20000), uniform(du, 2.0_wp * du, 100)]
+  call walk(p, sliding, path, energy, peak, dpeak, growth)
+  call check_close('ABP mode II peak / s2', peak / p%s2, 1.0_wp, 1e-12_wp)
+  call check_close('ABP mode II work / G2', energy / p%g2, 1.0_wp, 1e-9_wp)
+  call check_true('ABP: beta never grows', growth <= 0.0_wp)
+  call damage_energy_check(p, sliding, [(di + (1.1_wp * du - di) * i / 12.0_wp, i = 1, 12)], 'ABP')
+  call cycle_check(p, opening, p%s1 / p%cn, 'ABP')
+  call step_factor_bracket(p, p%s1 / p%cn, 'ABP')
+  beta = czm_beta_update(p, 1.0_wp, 0.0_wp, 1.01_wp * p%du1, h)
+  beta2 = czm_beta_update(p, beta, 0.0_wp, 0.1_wp * p%s1 / p%cn, h)
+  call check_true('ABP broken beyond du and stays broken', beta == 0.0_wp .and. beta2 == 0.0_wp)
 
   call test_finish()
 
 contains
+
+  !> D(beta) (czm_damage_energy) at the damage a monotonic pure-mode path reaches at each
+  !> opening d(:) against the path's own work up to d less the stored 1/2 beta^k c d^2
+  !> (walk: trapezoidal work on 20000 points per segment).
+  subroutine damage_energy_check(p, mode, d, name)
+    type(czm_t), intent(in) :: p
+    integer, intent(in) :: mode
+    real(wp), intent(in) :: d(:)
+    character(*), intent(in) :: name
+    real(wp) :: work, pk, dpk, gr, c, b, ref, worst
+    integer :: j
+    c = merge(p%cn, p%ct, mode == opening)
+    worst = 0.0_wp
+    do j = 1, size(d)
+      call walk(p, mode, uniform(0.0_wp, d(j), 20000), work, pk, dpk, gr)
+      b = merge(czm_beta_update(p, 1.0_wp, 0.0_wp, d(j), h), czm_beta_update(p, 1.0_wp, d(j), 0.0_wp, h), &
+                mode == opening)
+      ref = work - 0.5_wp * b**czm_beta_power(p) * c * d(j)**2
+      if (mode == opening) then
+        worst = max(worst, abs(czm_damage_energy(p, b, 0.0_wp, d(j)) - ref))
+      else
+        worst = max(worst, abs(czm_damage_energy(p, b, d(j), 0.0_wp) - ref))
+      end if
+    end do
+    call check_close(name // ': D(beta) - (work - stored), of G, worst over the path', &
+                     worst / merge(p%g1, p%g2, mode == opening), 0.0_wp, 1.0e-7_wp)
+  end subroutine damage_energy_check
 
   !> The factor of a damaging step (czm_step_factor) is the mean of a traction factor
   !> that falls from beta0^k to beta1^k along the step, so it lies between them, also

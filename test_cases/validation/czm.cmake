@@ -20,11 +20,11 @@ set(_czm ${CMAKE_CURRENT_SOURCE_DIR})
 # damage solved within the step (the default) and with LMGC90's explicit update (its
 # one-step lag).
 set(czm_run_args "")
-foreach(law mac mp3 mal th expo)
+foreach(law mac mp3 mal th expo abp)
   fracas_czm_case(mode_I_${law} ${_czm}/czm_mode_I/${law} ${_czm}/czm_mode_I/check.py quick ${law})
 endforeach()
 set(czm_run_args --set cohesive_damage=explicit)
-foreach(law mac mp3 mal th expo)
+foreach(law mac mp3 mal th expo abp)
   fracas_czm_case(mode_I_${law}_explicit ${_czm}/czm_mode_I/${law} ${_czm}/czm_mode_I/check.py quick ${law})
 endforeach()
 set(czm_run_args "")
@@ -64,7 +64,7 @@ fracas_czm_case(energy ${_czm}/czm_energy ${_czm}/czm_energy/check.py medium)
 set(czm_run_args --set cohesive_damage=explicit)   # its reference: LMGC90's update, step by step
 fracas_czm_case(driven_pair ${_czm}/czm_driven_pair ${_czm}/czm_driven_pair/check.py quick)
 set(czm_run_args "")
-# Meshed blocks: the gap law of each family (MAC_CZM, MP3_CZM, MAL_CZM, TH_CZM, EXPO_CZM)
+# Meshed blocks: the gap law of each family (MAC_CZM, MP3_CZM, MAL_CZM, TH_CZM, EXPO_CZM, ABP_CZM)
 # on CLALp contacts between two Q4 MAILx bodies, opened (mode I) or slid (mode II), the
 # deck generated into the build tree (gen.py --mesh [--shear]), czm_mode_I's checks.
 foreach(mode I II)
@@ -73,7 +73,7 @@ foreach(mode I II)
   else()
     set(flag "")
   endif()
-  foreach(law mac mp3 mal th expo)
+  foreach(law mac mp3 mal th expo abp)
     set(name czm_mode_${mode}_mesh_${law})
     set(out ${CMAKE_CURRENT_BINARY_DIR}/${name})
     add_test(NAME validation.${name}.gen
@@ -92,7 +92,7 @@ foreach(mode I II)
 endforeach()
 # The one Python implementation of the laws (fracas_tools.cohesive.Law) against the
 # solver, every cohesive law it runs (MAC_CZM, IQS_MAC_CZM, MP3_CZM, (IQS_)MAL_CZM,
-# (IQS_)TH_CZM, (IQS_)EXPO_CZM), both damage schemes, on a driven pair opened and slid
+# (IQS_)TH_CZM, (IQS_)EXPO_CZM, (IQS_)ABP_CZM), both damage schemes, on a driven pair opened and slid
 # (mixed mode, with a partial closing): beta, reactions and energies at every step to
 # round-off (czm_law_mirror/README.md), so that a drift of either side is red.
 add_test(NAME validation.czm_law_mirror

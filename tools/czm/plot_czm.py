@@ -4,7 +4,7 @@
 Runs the validation decks test_cases/validation/czm_*/ with fracas (into a scratch folder,
 or reads the runs already there) and draws, over the closed forms of fracas_tools.cohesive:
 
-    doc/img/czm_<law>.png      mode I traction-opening curve and beta (mac mp3 mal th expo)
+    doc/img/czm_<law>.png      mode I traction-opening curve and beta (mac mp3 mal th expo abp)
     doc/img/czm_mode_II.png    shear under preload: cohesion then Coulomb (MAC, EXPO)
     doc/img/czm_cyclic.png     opening/closing cycles: secant unloading (MAC, MP3)
     doc/img/czm_rate.png       viscous MAC at three opening rates vs the damage ODE

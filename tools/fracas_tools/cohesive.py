@@ -27,7 +27,9 @@ written independently from czm.md, the validation cases' reference.)
 * TH: di = s/c, plateau s to dp, linear to 0 at du = 2G/s - dp + di.
 * EXPO: di = s/c, then s exp(phi (di - d)), phi = s/(G - s di/2), cut at
   du = di - ln(eta)/phi: work G - eta (G - s di/2).
-Mode 1 uses (cn, s1, G1, dp1), mode 2 (ct, s2, G2, dp2); mixed jumps blend them linearly
+* ABP: tri-linear, di = s/c, then to (dp, sp), then to (du, 0): sp = 2G (1 - phi)/du,
+  dp = (2 G phi + sp di)/s, so that the work is G.
+Mode 1 uses (cn, s1, G1, dp1, du1), mode 2 (ct, s2, G2, dp2, du2); mixed jumps blend them linearly
 with the mixity m = ut^2/(ut^2 + <un>+^2) (Fracas's rule).
 
 Deck helpers (doc/fracture.md §1): the node perturbation that breaks a regular mesh's
@@ -161,7 +163,7 @@ BETA_BROKEN = 1.0e-12
 
 
 class Law:
-    """One cohesive law: family 'MAC', 'MP3', 'MAL', 'TH' or 'EXPO' and its parameters."""
+    """One cohesive law: family 'MAC', 'MP3', 'MAL', 'TH', 'EXPO' or 'ABP' and its parameters."""
 
     def __init__(self, family, **p):
         self.family = family.upper()
@@ -189,6 +191,10 @@ class Law:
     @classmethod
     def expo(cls, cn, ct, s1, s2, G1, G2, eta):
         return cls("EXPO", cn=cn, ct=ct, s1=s1, s2=s2, G1=G1, G2=G2, eta=eta)
+
+    @classmethod
+    def abp(cls, cn, ct, s1, s2, G1, G2, du1, du2, phi):
+        return cls("ABP", cn=cn, ct=ct, s1=s1, s2=s2, G1=G1, G2=G2, du1=du1, du2=du2, phi=phi)
 
     @property
     def k(self):
@@ -221,6 +227,9 @@ class Law:
         if self.family == "TH":
             dp = max(di, self.dp1 if mode == 1 else self.dp2)
             return [di, dp, 2.0 * g / s - dp + di]
+        if self.family == "ABP":
+            dp, sp, du = self.abp_corners(1.0 if mode == 2 else 0.0, s, g, di)
+            return [di, dp, du]
         phi = s / (g - 0.5 * s * di)
         return [di, di - math.log(self.eta) / phi]
 
@@ -251,6 +260,11 @@ class Law:
             du = 2.0 * g / s - dp + di
             b = np.where(d <= di, 1.0, np.where(d <= dp, di / dd,
                          np.where(d < du, (di / dd) * (du - dd) / (du - dp), 0.0)))
+        elif self.family == "ABP":
+            dp, sp, du = self.abp_corners(1.0 if mode == 2 else 0.0, s, g, di)
+            first = (s + (sp - s) * (dd - di) / max(dp - di, 1e-300)) / (c * dd)
+            b = np.where(d <= di, 1.0, np.where(d <= dp, first,
+                         np.where(d < du, sp * (du - dd) / ((du - dp) * c * dd), 0.0)))
         else:
             phi = s / (g - 0.5 * s * di)
             du = di - math.log(self.eta) / phi
@@ -267,7 +281,7 @@ class Law:
         return float(self.sigma(self.d_peak(mode), mode))
 
     def fracture_energy(self, mode):
-        """Work of full separation: w (MAC, MP3 with cn = ct), G1/G2 (MAL, TH),
+        """Work of full separation: w (MAC, MP3 with cn = ct), G1/G2 (MAL, TH, ABP),
         G - eta (G - s di/2) (EXPO, the cut-off tail removed)."""
         if self.family == "MAC":
             return self.w
@@ -280,7 +294,7 @@ class Law:
         return g
 
     def nominal_energy(self, mode):
-        """The energy parameter of the law: w (MAC, MP3), G1 or G2 (MAL, TH, EXPO)."""
+        """The energy parameter of the law: w (MAC, MP3), G1 or G2 (MAL, TH, EXPO, ABP)."""
         if self.family in ("MAC", "MP3"):
             return self.w
         return self.G1 if mode == 1 else self.G2
@@ -326,6 +340,14 @@ class Law:
             di = s / c
         return c, s, g, di, m
 
+    def abp_corners(self, m, s, g, di):
+        """ABP: (dp, sp, du) in the mode of mixity m, du blended linearly, dp kept in
+        [di, du] (fracas_czm: czm_abp_corners)."""
+        du = (1.0 - m) * self.du1 + m * self.du2
+        sp = 2.0 * g * (1.0 - self.phi) / du
+        dp = min(du, max(di, (2.0 * g * self.phi + sp * di) / s))
+        return dp, sp, du
+
     def update(self, beta_old, ut, un, h):
         """beta at the end of a step of length h from beta_old and the end-of-step jumps
         (ut, un): never larger than beta_old, 0 below BETA_BROKEN (czm_beta_update)."""
@@ -355,6 +377,14 @@ class Law:
                     beta = min(beta_old, di / d)
                 elif d < du:
                     beta = min(beta_old, (di / d) * (du - d) / (du - dp))
+                else:
+                    beta = 0.0
+            elif self.family == "ABP":
+                dp, sp, du = self.abp_corners(m, s, g, di)
+                if d <= dp:
+                    beta = min(beta_old, (s + (sp - s) * (d - di) / (dp - di)) / (c * d))
+                elif d < du:
+                    beta = min(beta_old, sp * (du - d) / ((du - dp) * c * d))
                 else:
                     beta = 0.0
             else:
@@ -390,6 +420,18 @@ class Law:
                 d = di * du / (beta * (du - dp) + di)            # on the linear decay
                 e = 0.5 * s * di + s * (dp - di) + s * ((d - dp) - 0.5 * (d - dp) ** 2 / (du - dp))
             e = e - 0.5 * beta * c * d * d
+        elif self.family == "ABP":
+            dp, sp, du = self.abp_corners(m, s, g, di)
+            if beta <= 0.0:
+                e = g
+            elif dp > di and beta * c * dp >= sp:
+                a = (sp - s) / (dp - di)                     # on the first branch: beta c d = s + a (d - di)
+                d = (s - a * di) / (beta * c - a)
+                e = 0.5 * s * di + 0.5 * (d - di) * (s + beta * c * d) - 0.5 * beta * c * d * d
+            else:
+                d = sp * du / (beta * c * (du - dp) + sp)    # on the second: beta c d = sp (du - d)/(du - dp)
+                e = (0.5 * s * di + 0.5 * (dp - di) * (s + sp) + 0.5 * (d - dp) * (sp + beta * c * d)
+                     - 0.5 * beta * c * d * d)
         else:
             # EXPO: the opening of beta by Newton on log(c d beta / s) + phi (d - di) = 0, bracketed
             phi = s / (g - 0.5 * s * di)
@@ -445,17 +487,23 @@ class Law:
     def of_deck(cls, law):
         """The Law of a deck's cohesive contact law (a fracas_tools ContactLaw read from
         TACT_BEHAV.DAT: IQS_MAC_CZM, MAC_CZM, MP3_CZM, (IQS_)MAL_CZM, (IQS_)TH_CZM,
-        (IQS_)EXPO_CZM)."""
+        (IQS_)EXPO_CZM, (IQS_)ABP_CZM)."""
         name = law.law.upper()
         family = name[4:] if name.startswith("IQS_") else name
-        if not family.endswith("_CZM") or family[:-4] not in ("MAC", "MP3", "MAL", "TH", "EXPO"):
+        if not family.endswith("_CZM") or family[:-4] not in ("MAC", "MP3", "MAL", "TH", "EXPO", "ABP"):
             raise ValueError(f"{law.law}: not a cohesive law of the solver")
         family = family[:-4]
         keys = {"MAC": ("cn", "ct", "b", "w"), "MP3": ("cn", "ct", "smax", "w"),
                 "MAL": ("cn", "ct", "s1", "s2", "G1", "G2"),
                 "TH": ("cn", "ct", "s1", "s2", "G1", "G2", "dp1", "dp2"),
-                "EXPO": ("cn", "ct", "s1", "s2", "G1", "G2", "eta")}[family]
-        return cls(family, **{k: law.params[k] for k in keys})
+                "EXPO": ("cn", "ct", "s1", "s2", "G1", "G2", "eta"),
+                "ABP": ("cn", "ct", "s1", "s2", "G1", "G2", "du1", "du2", "phi")}[family]
+        # LMGC90's own decks label them 'S1  =', 'Du1 =', 'Phi =': case does not matter
+        given = {k.lower(): v for k, v in law.params.items()}
+        missing = [k for k in keys if k.lower() not in given]
+        if missing:
+            raise ValueError(f"{law.law} {law.name}: parameters {', '.join(missing)} not found")
+        return cls(family, **{k: given[k.lower()] for k in keys})
 
     def lmgc90_params(self):
         """(law name suffix, parameters, layout) for fracas_tools Case.add_law."""
@@ -470,6 +518,8 @@ class Law:
             return base + tail + [["dp1", "dp2"]], ["s1", "s2", "G1", "G2", "dp1", "dp2"]
         if f == "EXPO":
             return base + tail + [["eta"]], ["s1", "s2", "G1", "G2", "eta"]
+        if f == "ABP":
+            return base + tail + [["du1", "du2"], ["phi"]], ["s1", "s2", "G1", "G2", "du1", "du2", "phi"]
         return base + tail, ["s1", "s2", "G1", "G2"]
 
     def add_to(self, case, nickname, law_name, mu):

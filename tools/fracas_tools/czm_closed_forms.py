@@ -48,7 +48,7 @@ class Curve:
 
 
 def curve(family, mode, **p):
-    """The curve of a law (family MAC, MP3, MAL, TH or EXPO) from its deck parameters."""
+    """The curve of a law (family MAC, MP3, MAL, TH, EXPO or ABP) from its deck parameters."""
     f = family.upper()
     c = p["cn"] if mode == 1 else p["ct"]
     if f == "MAC":
@@ -103,6 +103,23 @@ def curve(family, mode, **p):
             if d <= di:
                 return 0.5 * c * d * d
             return 0.5 * s * di + (s / phi) * (1.0 - math.exp(phi * (di - d)))
+        cv._work = work
+        return cv
+    if f == "ABP":
+        # three straight pieces: (0, 0) to (di, s), to (dp, sp), to (du, 0), with du given,
+        # sp = 2G(1 - phi)/du and dp = (2 G phi + sp di)/s (lmgc90.md 5.3): area G
+        du = p["du1"] if mode == 1 else p["du2"]
+        sp = 2.0 * g * (1.0 - p["phi"]) / du
+        dp = (2.0 * g * p["phi"] + sp * di) / s
+        cv = Curve(c, di, s, lambda d: np.where(d <= dp, s + (sp - s) * (d - di) / (dp - di),
+                                                sp * (du - d) / (du - dp)), du, g)
+
+        def work(d):
+            if d <= di:
+                return 0.5 * c * d * d
+            if d <= dp:
+                return 0.5 * s * di + 0.5 * (d - di) * (2.0 * s + (sp - s) * (d - di) / (dp - di))
+            return 0.5 * s * di + 0.5 * (dp - di) * (s + sp) + 0.5 * (d - dp) * (sp + sp * (du - d) / (du - dp))
         cv._work = work
         return cv
     raise ValueError(f"unknown cohesive law family {family!r}")

@@ -47,6 +47,8 @@ LAWS = {
     "IQS_TH_CZM": Law.th(**MAL, dp1=2.0e-5, dp2=6.0e-5),
     "EXPO_CZM": Law.expo(**MAL, eta=1.0e-4),
     "IQS_EXPO_CZM": Law.expo(**MAL, eta=1.0e-4),
+    "ABP_CZM": Law.abp(**MAL, du1=6.0e-5, du2=1.5e-4, phi=0.5),
+    "IQS_ABP_CZM": Law.abp(**MAL, du1=6.0e-5, du2=1.5e-4, phi=0.5),
 }
 # Tolerances: the same arithmetic in Fortran and Python, in double precision.
 BETA_TOL = 1.0e-12       # |beta - Law.update(beta_prev, ut, un, h)|

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Write test_cases/validation/czm_mode_I/<law>/DATBOX for <law> in mac, mp3, mal, th, expo:
+"""Write test_cases/validation/czm_mode_I/<law>/DATBOX for <law> in mac, mp3, mal, th, expo, abp:
 two 1 m x 1 m rigid POLYG blocks glued face to face at y = 0.5 (glued length 1 m,
 two contact points of 0.5 m each); the lower block is fixed, the upper one is pulled
 straight up by a driven velocity (its rotation is driven to 0, its x is free), no gravity.
@@ -50,6 +50,8 @@ LAWS = {
                                 dp1=2.0e-5, dp2=6.0e-5)),
     "expo": ("IQS_EXPO_CZM", Law.expo(cn=1.0e11, ct=5.0e10, s1=1.0e6, s2=2.0e6, G1=40.0, G2=100.0,
                                       eta=1.0e-4)),
+    "abp": ("IQS_ABP_CZM", Law.abp(cn=1.0e11, ct=5.0e10, s1=1.0e6, s2=2.0e6, G1=40.0, G2=100.0,
+                                   du1=6.0e-5, du2=1.5e-4, phi=0.5)),
 }
 
 
