@@ -36,7 +36,7 @@ program test_czm_laws
   integer, parameter :: opening = 1, sliding = 2
   real(wp), parameter :: h = 1.0e-4_wp
   type(czm_t) :: p
-  real(wp) :: energy, peak, dpeak, beta, beta2, d0, di, dk, dp, du, phi, ref, y, growth, sp
+  real(wp) :: energy, peak, dpeak, beta, beta2, d0, di, dk, dp, du, phi, ref, y, growth
   real(wp), allocatable :: path(:)
   integer :: i
 
@@ -223,29 +223,8 @@ program test_czm_laws
   ! ------------------------------------------------------------------ ABP
   p = czm_t(family=czm_abp, cn=1.0e11_wp, ct=5.0e10_wp, s1=1.0e6_wp, s2=2.0e6_wp, g1=40.0_wp, g2=100.0_wp, &
             du1=6.0e-5_wp, du2=1.5e-4_wp, phi=0.5_wp)
-  di = p%s1 / p%cn
-  sp = 2.0_wp * p%g1 * (1.0_wp - p%phi) / p%du1
-  dp = (2.0_wp * p%g1 * p%phi + sp * di) / p%s1
-  du = p%du1
-  path = [uniform(0.0_wp, di, 2000), uniform(di, dp, 20000), uniform(dp, du, 20000), uniform(du, 2.0_wp * du, 100)]
-  call walk(p, opening, path, energy, peak, dpeak, growth)
-  call check_close('ABP mode I peak / s1', peak / p%s1, 1.0_wp, 1e-12_wp)
-  call check_close('ABP mode I work / G1', energy / p%g1, 1.0_wp, 1e-9_wp)
-  call check_close('ABP mode I sigma(dp) / sp', czm_beta_update(p, 1.0_wp, 0.0_wp, dp, h) * p%cn * dp / sp, &
-                   1.0_wp, 1e-13_wp)
-  call check_close('ABP mode I sigma((dp + du)/2) / (sp/2)', czm_beta_update(p, 1.0_wp, 0.0_wp, 0.5_wp * (dp + du), h) &
-                   * p%cn * 0.5_wp * (dp + du) / (0.5_wp * sp), 1.0_wp, 1e-13_wp)
-  call damage_energy_check(p, opening, [(di + (1.1_wp * du - di) * i / 12.0_wp, i = 1, 12)], 'ABP')
-  di = p%s2 / p%ct
-  sp = 2.0_wp * p%g2 * (1.0_wp - p%phi) / p%du2
-  dp = (2.0_wp * p%g2 * p%phi + sp * di) / p%s2
-  du = p%du2
-  path = [uniform(0.0_wp, di, 2000), uniform(di, dp, 20000), uniform(dp, du, 20000), uniform(du, 2.0_wp * du, 100)]
-  call walk(p, sliding, path, energy, peak, dpeak, growth)
-  call check_close('ABP mode II peak / s2', peak / p%s2, 1.0_wp, 1e-12_wp)
-  call check_close('ABP mode II work / G2', energy / p%g2, 1.0_wp, 1e-9_wp)
-  call check_true('ABP: beta never grows', growth <= 0.0_wp)
-  call damage_energy_check(p, sliding, [(di + (1.1_wp * du - di) * i / 12.0_wp, i = 1, 12)], 'ABP')
+  call abp_pure_mode(p, opening, 'ABP mode I')
+  call abp_pure_mode(p, sliding, 'ABP mode II')
   call cycle_check(p, opening, p%s1 / p%cn, 'ABP')
   call step_factor_bracket(p, p%s1 / p%cn, 'ABP')
   beta = czm_beta_update(p, 1.0_wp, 0.0_wp, 1.01_wp * p%du1, h)
@@ -255,6 +234,32 @@ program test_czm_laws
   call test_finish()
 
 contains
+
+  !> ABP in one pure mode: the walk's peak s and work G, the traction at the corner dp
+  !> (sp) and half-way down the last piece (sp/2), beta never growing, and D(beta).
+  subroutine abp_pure_mode(p, mode, name)
+    type(czm_t), intent(in) :: p
+    integer, intent(in) :: mode
+    character(*), intent(in) :: name
+    real(wp) :: c, s, g, di, sp, dp, du, work, pk, dpk, gr, d
+    integer :: j
+    c = merge(p%cn, p%ct, mode == opening)
+    s = merge(p%s1, p%s2, mode == opening)
+    g = merge(p%g1, p%g2, mode == opening)
+    du = merge(p%du1, p%du2, mode == opening)
+    di = s / c
+    sp = 2.0_wp * g * (1.0_wp - p%phi) / du
+    dp = (2.0_wp * g * p%phi + sp * di) / s
+    call walk(p, mode, [uniform(0.0_wp, di, 2000), uniform(di, dp, 20000), uniform(dp, du, 20000), &
+                        uniform(du, 2.0_wp * du, 100)], work, pk, dpk, gr)
+    call check_close(name // ' peak / s', pk / s, 1.0_wp, 1e-12_wp)
+    call check_close(name // ' work / G', work / g, 1.0_wp, 1e-9_wp)
+    call check_true(name // ': beta never grows', gr <= 0.0_wp)
+    d = 0.5_wp * (dp + du)
+    call check_close(name // ' sigma(dp) / sp', upd(p, mode, 1.0_wp, dp) * c * dp / sp, 1.0_wp, 1e-13_wp)
+    call check_close(name // ' sigma((dp + du)/2) / (sp/2)', upd(p, mode, 1.0_wp, d) * c * d / (0.5_wp * sp), 1.0_wp, 1e-13_wp)
+    call damage_energy_check(p, mode, [(di + (1.1_wp * du - di) * j / 12.0_wp, j = 1, 12)], name)
+  end subroutine abp_pure_mode
 
   !> D(beta) (czm_damage_energy) at the damage a monotonic pure-mode path reaches at each
   !> opening d(:) against the path's own work up to d less the stored 1/2 beta^k c d^2
