@@ -259,7 +259,6 @@ contains
                              c%mu(k), active, &
                              cohesive, coh, weff, solvable)
       c%active(k) = active
-      c%cohesive(k) = cohesive
       factor = 1.0_wp
       if (carry .and. c%cohesive(k)) factor = c%coh(coh_factor(2), k)
       c%cohesive(k) = cohesive
