@@ -1,0 +1,162 @@
+!> 3D contactors and pairs: mass properties (fracas_contactors_3d) against the
+!> textbook formulas, the principal frame of a two-sphere body, the symmetric
+!> 3x3 eigen-decomposition, and the SPSPx / SPPLx gap, point and frame against
+!> hand computations. References in each check's name or comment; tolerances
+!> are round-off (1e-12 relative) except where stated.
+!> Planted bugs watched red: the parallel-axis term with + vi d d^T (4 checks:
+!> the moment about the line of centres 1.78e-2 for 1.07e-3, the axis across);
+!> SPPLx's lower face with the upper normal (normal and handedness off by 2);
+!> SPSPx's point on the candidate's surface (0.05 off).
+program test_contactors_3d
+  use fracas_kinds, only: wp
+  use fracas_testing, only: check_close, check_true, test_finish
+  use fracas_contactors_3d, only: tactor3_t, tk3_spher, tk3_planx, body3_mass_properties, tactor3_place
+  use fracas_frame_3d, only: symmetric_eigen_3x3, cross3, rotation_of_vector
+  use fracas_spspx, only: spspx_geometry
+  use fracas_spplx, only: spplx_geometry
+  implicit none
+  real(wp), parameter :: pi = acos(-1.0_wp)
+
+  call sphere_and_box()
+  call two_spheres()
+  call eigen()
+  call spsp()
+  call sppl()
+  call test_finish()
+
+contains
+
+  !> Sphere r = 0.5, density 2000: m = 4/3 pi r^3 rho, I = 2/5 m r^2; box of half
+  !> lengths (1, 0.5, 0.25), density 1000: m = 8 abc rho, I1 = m (b^2 + c^2) / 3
+  !> (half lengths; = m (B^2 + C^2) / 12 with the full ones).
+  subroutine sphere_and_box()
+    type(tactor3_t) :: t(1)
+    real(wp) :: avrd, c(3), f(3, 3), m, ii(3), mref
+    t(1)%kind = tk3_spher
+    t(1)%radius = 0.5_wp
+    avrd = 0.0_wp
+    call body3_mass_properties(t, [1.0_wp, 2.0_wp, 3.0_wp], 2000.0_wp, avrd, c, f, m, ii)
+    mref = 4.0_wp / 3.0_wp * pi * 0.125_wp * 2000.0_wp
+    call check_close('sphere mass', m, mref, 1.0e-12_wp * mref)
+    call check_close('sphere I1 = 2/5 m r^2', ii(1), 0.4_wp * mref * 0.25_wp, 1.0e-12_wp * mref)
+    call check_close('sphere I3 = I1', ii(3), ii(1), 0.0_wp)
+    call check_close('sphere avrd computed = r', avrd, 0.5_wp, 1.0e-14_wp)
+    call check_close('sphere centre = node', norm2(c - [1.0_wp, 2.0_wp, 3.0_wp]), 0.0_wp, 0.0_wp)
+    t(1)%kind = tk3_planx
+    t(1)%axes = [1.0_wp, 0.5_wp, 0.25_wp]
+    t(1)%frame = rotation_of_vector([0.3_wp, -0.2_wp, 0.5_wp])
+    t(1)%shift = [0.0_wp, 0.0_wp, -0.25_wp]
+    avrd = 0.0_wp
+    call body3_mass_properties(t, [0.0_wp, 0.0_wp, 0.0_wp], 1000.0_wp, avrd, c, f, m, ii)
+    mref = 8.0_wp * 0.125_wp * 1000.0_wp
+    call check_close('box mass', m, mref, 1.0e-12_wp * mref)
+    call check_close('box I1 = m (b^2 + c^2) / 3', ii(1), mref * (0.25_wp + 0.0625_wp) / 3.0_wp, 1.0e-12_wp * mref)
+    call check_close('box I2 = m (a^2 + c^2) / 3', ii(2), mref * (1.0_wp + 0.0625_wp) / 3.0_wp, 1.0e-12_wp * mref)
+    call check_close('box I3 = m (a^2 + b^2) / 3', ii(3), mref * (1.0_wp + 0.25_wp) / 3.0_wp, 1.0e-12_wp * mref)
+    call check_close('box body frame = its PLANx frame', maxval(abs(f - rotation_of_vector([0.3_wp, -0.2_wp, 0.5_wp]))), &
+                     0.0_wp, 0.0_wp)
+    call check_close('box centre = node + shift', c(3), -0.25_wp, 0.0_wp)
+  end subroutine sphere_and_box
+
+  !> Two spheres r = 0.2 at +-d = 0.5 along the unit axis e (tilted), density 1:
+  !> about e, I = 2 (2/5 v r^2); across, I = 2 (2/5 v r^2 + v d^2) (Huygens);
+  !> the smallest moment's axis is e; centre midway; offsets -+ d along axis 1.
+  subroutine two_spheres()
+    type(tactor3_t) :: t(2)
+    real(wp) :: avrd, c(3), f(3, 3), m, ii(3), e(3), v, i0, pos(3), tf(3, 3)
+    e = [1.0_wp, 2.0_wp, 2.0_wp] / 3.0_wp
+    t%kind = tk3_spher
+    t%radius = 0.2_wp
+    t(1)%shift = [1.0_wp, 1.0_wp, 1.0_wp] + 0.5_wp * e
+    t(2)%shift = [1.0_wp, 1.0_wp, 1.0_wp] - 0.5_wp * e
+    avrd = 0.0_wp
+    call body3_mass_properties(t, [0.0_wp, 0.0_wp, 1.0_wp], 1.0_wp, avrd, c, f, m, ii)
+    v = 4.0_wp / 3.0_wp * pi * 0.2_wp**3
+    i0 = 0.4_wp * v * 0.04_wp
+    call check_close('two spheres: mass', m, 2.0_wp * v, 1.0e-14_wp)
+    call check_close('two spheres: I about the line of centres', ii(1), 2.0_wp * i0, 1.0e-12_wp * ii(3))
+    call check_close('two spheres: I across (Huygens)', ii(2), 2.0_wp * (i0 + v * 0.25_wp), 1.0e-12_wp * ii(3))
+    call check_close('two spheres: I3 = I2', ii(3), ii(2), 1.0e-12_wp * ii(3))
+    call check_close('two spheres: axis 1 along the line of centres', abs(dot_product(f(:, 1), e)), 1.0_wp, 1.0e-12_wp)
+    call check_close('two spheres: centre', norm2(c - [1.0_wp, 1.0_wp, 2.0_wp]), 0.0_wp, 1.0e-14_wp)
+    call check_close('two spheres: offset of the first along axis 1', abs(t(1)%shift(1)), 0.5_wp, 1.0e-12_wp)
+    call tactor3_place(t(1), c, f, pos, tf)
+    call check_close('two spheres: first placed back where read', norm2(pos - ([1.0_wp, 1.0_wp, 2.0_wp] + 0.5_wp * e)), &
+                     0.0_wp, 1.0e-14_wp)
+    call check_close('two spheres: frame right-handed', dot_product(cross3(f(:, 1), f(:, 2)), f(:, 3)), 1.0_wp, 1.0e-14_wp)
+  end subroutine two_spheres
+
+  !> A symmetric matrix built from known eigenpairs: R diag(1, 4, 9) R^T.
+  subroutine eigen()
+    real(wp) :: r(3, 3), a(3, 3), lam(3), v(3, 3), d(3, 3)
+    integer :: k
+    r = rotation_of_vector([0.7_wp, -1.1_wp, 0.4_wp])
+    a = matmul(r, matmul(reshape([9.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 4.0_wp], [3, 3]), &
+                         transpose(r)))
+    call symmetric_eigen_3x3(a, lam, v)
+    call check_close('eigen: lambda 1', lam(1), 1.0_wp, 1.0e-13_wp)
+    call check_close('eigen: lambda 2', lam(2), 4.0_wp, 1.0e-13_wp)
+    call check_close('eigen: lambda 3', lam(3), 9.0_wp, 1.0e-13_wp)
+    d = 0.0_wp
+    do k = 1, 3
+      d(k, k) = lam(k)
+    end do
+    call check_close('eigen: V diag V^T = A', maxval(abs(matmul(v, matmul(d, transpose(v))) - a)), 0.0_wp, 1.0e-13_wp)
+    call check_close('eigen: axis of 9 = R e1', abs(dot_product(v(:, 3), r(:, 1))), 1.0_wp, 1.0e-13_wp)
+  end subroutine eigen
+
+  !> Spheres r = 1 at (0,0,0) (antagonist) and r = 0.5 at (3, 4, 0)/5 * 1.4:
+  !> distance 1.4, gap -0.1, n = (0.6, 0.8, 0), point mid-gap at 0.95 n.
+  subroutine spsp()
+    real(wp) :: gap, p(3), f(3, 3)
+    call spspx_geometry([0.84_wp, 1.12_wp, 0.0_wp], 0.5_wp, [0.0_wp, 0.0_wp, 0.0_wp], 1.0_wp, gap, p, f)
+    call check_close('SPSPx gap', gap, -0.1_wp, 1.0e-14_wp)
+    call check_close('SPSPx normal', norm2(f(:, 3) - [0.6_wp, 0.8_wp, 0.0_wp]), 0.0_wp, 1.0e-15_wp)
+    call check_close('SPSPx point mid-gap', norm2(p - 0.95_wp * [0.6_wp, 0.8_wp, 0.0_wp]), 0.0_wp, 1.0e-15_wp)
+    call check_frame('SPSPx', f)
+  end subroutine spsp
+
+  !> A PLANx (half axes 2, 1, 0.1) turned by 30 degrees about x, at (0, 0, 1);
+  !> sphere r = 0.5 above the upper face at height 0.55 over the mid-plane
+  !> (gap -0.05), then below the lower face at 0.7 (gap 0.1), then beyond the
+  !> rim: 2.3 along alpha, 0.4 along gamma from the centre: nearest mid-plane
+  !> point at 2 alpha, distance 0.5, gap 0.5 - 0.5 - 0.1 = -0.1.
+  subroutine sppl()
+    real(wp) :: pf(3, 3), p(3), c(3), gap, pt(3), f(3, 3)
+    logical :: found
+    pf = rotation_of_vector([pi / 6.0_wp, 0.0_wp, 0.0_wp])
+    p = [0.0_wp, 0.0_wp, 1.0_wp]
+    c = p + 0.3_wp * pf(:, 1) - 0.2_wp * pf(:, 2) + 0.55_wp * pf(:, 3)
+    call spplx_geometry(c, 0.5_wp, p, pf, [2.0_wp, 1.0_wp, 0.1_wp], 0.01_wp, found, gap, pt, f)
+    call check_true('SPPLx upper face found', found)
+    call check_close('SPPLx upper face gap', gap, -0.05_wp, 1.0e-14_wp)
+    call check_close('SPPLx upper normal = gamma', norm2(f(:, 3) - pf(:, 3)), 0.0_wp, 1.0e-15_wp)
+    call check_close('SPPLx upper point mid-gap', norm2(pt - (c - 0.475_wp * pf(:, 3))), 0.0_wp, 1.0e-14_wp)
+    call check_frame('SPPLx upper', f)
+    c = p + 0.3_wp * pf(:, 1) - 0.2_wp * pf(:, 2) - 0.7_wp * pf(:, 3)
+    call spplx_geometry(c, 0.5_wp, p, pf, [2.0_wp, 1.0_wp, 0.1_wp], 0.2_wp, found, gap, pt, f)
+    call check_true('SPPLx lower face found (alert 0.2)', found)
+    call check_close('SPPLx lower face gap', gap, 0.1_wp, 1.0e-14_wp)
+    call check_close('SPPLx lower normal = -gamma', norm2(f(:, 3) + pf(:, 3)), 0.0_wp, 1.0e-15_wp)
+    call check_frame('SPPLx lower', f)
+    call spplx_geometry(c, 0.5_wp, p, pf, [2.0_wp, 1.0_wp, 0.1_wp], 0.05_wp, found, gap, pt, f)
+    call check_true('SPPLx lower face not found (alert 0.05 < gap 0.1)', .not. found)
+    c = p + 2.3_wp * pf(:, 1) + 0.4_wp * pf(:, 3)
+    call spplx_geometry(c, 0.5_wp, p, pf, [2.0_wp, 1.0_wp, 0.1_wp], 0.01_wp, found, gap, pt, f)
+    call check_true('SPPLx rim found', found)
+    call check_close('SPPLx rim gap', gap, -0.1_wp, 1.0e-14_wp)
+    call check_close('SPPLx rim normal', norm2(f(:, 3) - (0.6_wp * pf(:, 1) + 0.8_wp * pf(:, 3))), 0.0_wp, 1.0e-15_wp)
+    call check_frame('SPPLx rim', f)
+  end subroutine sppl
+
+  !> Columns t1, t2, n orthonormal and right-handed.
+  subroutine check_frame(name, f)
+    character(len=*), intent(in) :: name
+    real(wp), intent(in) :: f(3, 3)
+    real(wp) :: id(3, 3)
+    id = 0.0_wp
+    id(1, 1) = 1.0_wp; id(2, 2) = 1.0_wp; id(3, 3) = 1.0_wp
+    call check_close(name//' frame orthonormal', maxval(abs(matmul(transpose(f), f) - id)), 0.0_wp, 1.0e-15_wp)
+    call check_close(name//' frame t1 x t2 = n', norm2(cross3(f(:, 1), f(:, 2)) - f(:, 3)), 0.0_wp, 1.0e-15_wp)
+  end subroutine check_frame
+end program test_contactors_3d
