@@ -1,0 +1,177 @@
+!> The contact side of a rigid 3D body (fracas_rbdy3_side) with the body model
+!> (fracas_rbdy3), SPPLx (fracas_spplx) and the existing exact 3D Coulomb local
+!> solver (fracas_local_solver: coulomb_3d), at the unit level (not the scene):
+!> 1. H against a central finite difference of a material point's motion (the
+!>    frame turned by the exact rotation; delta = 1e-6, error O(delta^2): 1e-9);
+!> 2. W = H M^-1 H^T against an explicit impulse: a unit local impulse e_j as a
+!>    global force P at the point, dv = P / m, d omega = I^-1 F^T (r x P), the
+!>    point's velocity change projected on the frame (round-off, 1e-12);
+!> 3. one step of a sphere resting on a horizontal PLANx under gravity: the
+!>    normal impulse / h = m g, tangential 0 (round-off, 1e-10 relative);
+!> 4. a sphere rolling down a PLANx inclined by alpha, N = 400 steps (h = 1e-3,
+!>    theta = 0.5, IQS-like law: Signorini on u_n + max(0, gap) / h), with a
+!>    loop in the test: sticking (mu = 0.5 > 2/7 tan alpha) the centre's
+!>    acceleration is 5/7 g sin alpha, the normal force m g cos alpha, the
+!>    friction 2/7 m g sin alpha, and the rolling condition holds (the scheme
+!>    holds them exactly per step: 1e-9 relative); slipping (alpha = 30 deg,
+!>    mu = 0.1 < 2/7 tan alpha = 0.165) a = g (sin alpha - mu cos alpha) and
+!>    the angular acceleration 5 mu g cos alpha / (2 R).
+!> Planted bugs watched red: the levers as F (r x e_k) instead of F^T (r x e_k)
+!> (checks 1 and 2, 10 failures; the rolling is blind to it: a sphere's frame
+!> is the identity); the Delassus block without its rotational part (checks 2
+!> and 4: a = 2.388 for 2.397, friction 48.3 N for 10.04 N).
+program test_rbdy3_contact
+  use fracas_kinds, only: wp
+  use fracas_testing, only: check_close, check_true, test_finish
+  use fracas_deck, only: driven_dof_input_t
+  use fracas_rbdy3, only: rbdy3_t, rbdy3_init, rbdy3_add_drives, rbdy3_begin_step, rbdy3_detection_config, &
+                          rbdy3_end_step
+  use fracas_rbdy3_side, only: rigid3_levers, rigid3_add_delassus, rigid3_add_velocity, rigid3_pair_velocity, &
+                               rigid3_pair_impulse
+  use fracas_contactors_3d, only: tactor3_t, tk3_spher, tk3_planx, body3_mass_properties
+  use fracas_spplx, only: spplx_geometry
+  use fracas_frame_3d, only: cross3, rotation_of_vector
+  use fracas_local_solver, only: coulomb_3d, inverse_block_3d
+  implicit none
+  real(wp), parameter :: pi = acos(-1.0_wp), grav = 9.81_wp, radius = 0.1_wp, rho = 2500.0_wp
+
+  call h_and_delassus()
+  call incline(0.0_wp, 0.5_wp, 1, 'rest on a plane')
+  call incline(20.0_wp * pi / 180.0_wp, 0.5_wp, 400, 'rolling (stick)')
+  call incline(30.0_wp * pi / 180.0_wp, 0.1_wp, 400, 'sliding')
+  call test_finish()
+
+contains
+
+  subroutine h_and_delassus()
+    real(wp) :: f(3, 3), cf(3, 3), r(3), inv(6), lev(9), w(9), u(3), v(6), dv(3), dom(3), du(3), p(3), pp(3), pm(3)
+    real(wp), parameter :: delta = 1.0e-6_wp
+    integer :: j, k
+    f = rotation_of_vector([0.4_wp, -0.9_wp, 1.3_wp])       ! body frame
+    cf = rotation_of_vector([-1.2_wp, 0.3_wp, 0.5_wp])      ! contact frame (t1, t2, n)
+    r = [0.3_wp, -0.7_wp, 0.2_wp]                           ! point - centre
+    inv = 1.0_wp / [2.0_wp, 2.0_wp, 2.0_wp, 0.3_wp, 0.5_wp, 0.8_wp]
+    lev = rigid3_levers(r, cf, f)
+    ! 1. H v against the finite difference of the point's motion
+    v = [0.2_wp, -0.1_wp, 0.4_wp, 1.5_wp, -0.8_wp, 0.6_wp]
+    u = 0.0_wp
+    call rigid3_add_velocity(1.0_wp, v, cf, lev, u)
+    pp = delta * v(1:3) + matmul(f, matmul(rotation_of_vector(delta * v(4:6)), matmul(transpose(f), r)))
+    pm = -delta * v(1:3) + matmul(f, matmul(rotation_of_vector(-delta * v(4:6)), matmul(transpose(f), r)))
+    p = matmul((pp - pm) / (2.0_wp * delta), cf)
+    call check_close('H v = finite difference of the point motion (frame components)', norm2(u - p), 0.0_wp, 1.0e-9_wp)
+    ! 2. W against explicit impulses
+    w = 0.0_wp
+    call rigid3_add_delassus(inv, cf, lev, w)
+    do j = 1, 3
+      dv = inv(1:3) * cf(:, j)
+      dom = inv(4:6) * matmul(cross3(r, cf(:, j)), f)
+      du = matmul(dv + cross3(matmul(f, dom), r), cf)
+      do k = 1, 3
+        call check_close('W(k,j) = explicit impulse response', w(3 * (k - 1) + j), du(k), 1.0e-12_wp)
+      end do
+    end do
+  end subroutine h_and_delassus
+
+  !> Sphere (body 1) on a PLANx (body 2, every dof held at 0 by DRV_DOF-like
+  !> drives) inclined by alpha about x; starts at rest, touching (gap 0).
+  subroutine incline(alpha, mu, nstep, name)
+    real(wp), intent(in) :: alpha, mu
+    integer, intent(in) :: nstep
+    character(len=*), intent(in) :: name
+    real(wp), parameter :: h = 1.0e-3_wp, theta = 0.5_wp
+    type(rbdy3_t) :: b
+    type(tactor3_t) :: ts(1), tp(1)
+    type(driven_dof_input_t) :: hold(6)
+    real(wp) :: cs(3), fs(3, 3), ms, is(3), cp(3), fp(3, 3), mp, ip(3), avrd, q(3, 2), ftt(3, 3, 2), gap, pt(3), cf(3, 3)
+    real(wp) :: lever(18), w(9), uf(3), rl(3), rsum(3), down(3), t, a, aref, omega_dot
+    logical :: found
+    integer :: k, st
+    tp(1)%kind = tk3_planx
+    tp(1)%axes = [10.0_wp, 10.0_wp, 0.05_wp]
+    tp(1)%frame = rotation_of_vector([alpha, 0.0_wp, 0.0_wp])
+    avrd = 0.0_wp
+    call body3_mass_properties(tp, [0.0_wp, 0.0_wp, 0.0_wp], rho, avrd, cp, fp, mp, ip)
+    ts(1)%kind = tk3_spher
+    ts(1)%radius = radius
+    avrd = 0.0_wp
+    call body3_mass_properties(ts, cp + (0.05_wp + radius) * fp(:, 3), rho, avrd, cs, fs, ms, is)
+    call rbdy3_init(b, [1, 2], reshape([cs, cp], [3, 2]), reshape([fs, fp], [3, 3, 2]), [ms, mp], &
+                    reshape([is, ip], [3, 2]), [radius, 1.0_wp], [0.0_wp, 0.0_wp, -grav])
+    do k = 1, 6
+      hold(k)%kind = 'vlocy'
+      hold(k)%body = 2
+      hold(k)%dof = k
+    end do
+    call rbdy3_add_drives(b, hold)
+    down = -fp(:, 2)
+    rl = 0.0_wp
+    t = 0.0_wp
+    do k = 1, nstep
+      call rbdy3_begin_step(b, t, h, theta)
+      call rbdy3_detection_config(b, h, theta, q, ftt)
+      call spplx_geometry(q(:, 1), radius, q(:, 2), ftt(:, :, 2), tp(1)%axes, 1.0e-3_wp, found, gap, pt, cf)
+      if (.not. found) exit
+      lever(1:9) = rigid3_levers(pt - q(:, 1), cf, ftt(:, :, 1))
+      lever(10:18) = rigid3_levers(pt - q(:, 2), cf, ftt(:, :, 2))
+      w = 0.0_wp
+      call rigid3_add_delassus(b%inv_mass(:, 1), cf, lever(1:9), w)
+      call rigid3_add_delassus(b%inv_mass(:, 2), cf, lever(10:18), w)
+      uf = rigid3_pair_velocity(b%vfree(:, 1), b%vfree(:, 2), cf, lever)
+      uf(3) = uf(3) + max(0.0_wp, gap) / h
+      call solve(uf, w, mu, rl, st)
+      call rigid3_pair_impulse(b%v(:, 1), b%inv_mass(:, 1), b%v(:, 2), b%inv_mass(:, 2), cf, lever, rl)
+      call rbdy3_end_step(b, h, theta)
+      t = k * h
+    end do
+    call check_true(name//': in contact every step', found)
+    rsum = rl / h
+    if (nstep == 1) then
+      call check_close(name//': normal force = m g', rsum(3), ms * grav, 1.0e-10_wp * ms * grav)
+      call check_close(name//': no friction', norm2(rsum(1:2)), 0.0_wp, 1.0e-10_wp * ms * grav)
+      call check_close(name//': velocity after the step', norm2(b%v(:, 1)), 0.0_wp, 1.0e-12_wp)
+      return
+    end if
+    a = dot_product(b%v(1:3, 1), down) / t
+    call check_close(name//': normal force = m g cos alpha', rsum(3), ms * grav * cos(alpha), 1.0e-9_wp * ms * grav)
+    call check_close(name//': no motion off the slope', abs(dot_product(b%v(1:3, 1), fp(:, 1))) + &
+                     abs(dot_product(b%v(1:3, 1), fp(:, 3))), 0.0_wp, 1.0e-9_wp)
+    omega_dot = norm2(matmul(b%frame(:, :, 1), b%v(4:6, 1))) / t
+    if (mu > 2.0_wp / 7.0_wp * tan(alpha)) then
+      aref = 5.0_wp / 7.0_wp * grav * sin(alpha)
+      call check_close(name//': a = 5/7 g sin alpha', a, aref, 1.0e-9_wp * aref)
+      call check_close(name//': friction = 2/7 m g sin alpha', norm2(rsum(1:2)), 2.0_wp / 7.0_wp * ms * grav * sin(alpha), &
+                       1.0e-9_wp * ms * grav)
+      call check_close(name//': rolling, omega R = v', omega_dot * radius, a, 1.0e-9_wp * aref)
+    else
+      aref = grav * (sin(alpha) - mu * cos(alpha))
+      call check_close(name//': a = g (sin alpha - mu cos alpha)', a, aref, 1.0e-9_wp * aref)
+      call check_close(name//': friction = mu N', norm2(rsum(1:2)), mu * rsum(3), 1.0e-9_wp * ms * grav)
+      call check_close(name//': angular acceleration 5 mu g cos alpha / (2 R)', omega_dot, &
+                       5.0_wp * mu * grav * cos(alpha) / (2.0_wp * radius), 1.0e-9_wp * grav / radius)
+      call check_true(name//': slipping (omega R < v)', omega_dot * radius < 0.9_wp * a)
+    end if
+    write (*, '(a,a,2es24.16)') name, ': a, reference ', a, aref
+  end subroutine incline
+
+  !> One contact with the exact 3D local solver, which takes FCLib's order
+  !> (n, t1, t2), the block column-major; the store's order is (t1, t2, n),
+  !> the block by rows.
+  subroutine solve(uf, w, mu, r, status)
+    real(wp), intent(in) :: uf(3), w(9), mu
+    real(wp), intent(inout) :: r(3)
+    integer, intent(out) :: status
+    integer, parameter :: perm(3) = [3, 1, 2]   ! FCLib index -> store index
+    real(wp) :: wf(9), qf(3), rf(3)
+    integer :: i, j
+    do j = 1, 3
+      do i = 1, 3
+        wf(i + 3 * (j - 1)) = w(3 * (perm(i) - 1) + perm(j))
+      end do
+    end do
+    qf = uf(perm)
+    rf = r(perm)
+    call coulomb_3d(qf, wf, inverse_block_3d(wf), mu, rf, status)
+    r(perm) = rf
+  end subroutine solve
+end program test_rbdy3_contact
