@@ -16,10 +16,11 @@
 module fracas_contactors_3d
   use fracas_kinds, only: wp
   use fracas_frame_3d, only: symmetric_eigen_3x3
+  use fracas_deck_3d, only: tactor3_input_t
   implicit none
   private
   public :: tactor3_t, tk3_spher, tk3_planx, sphere_volume_inertia, planx_volume_inertia, &
-            body3_mass_properties, tactor3_place
+            body3_mass_properties, tactor3_place, tactors3_from_input
 
   integer, parameter :: tk3_spher = 1, tk3_planx = 2
   real(wp), parameter :: pi = acos(-1.0_wp)
@@ -37,6 +38,22 @@ module fracas_contactors_3d
   end type tactor3_t
 
 contains
+
+  !> The contactors of one body as read (fracas_read_bodies_3d): SPHER and
+  !> SPHEb (a sphere with an offset) are spheres.
+  pure function tactors3_from_input(inp) result(t)
+    type(tactor3_input_t), intent(in) :: inp(:)
+    type(tactor3_t) :: t(size(inp))
+    integer :: k
+    do k = 1, size(inp)
+      t(k)%kind = merge(tk3_planx, tk3_spher, inp(k)%kind == 'PLANx')
+      t(k)%color = inp(k)%color
+      t(k)%radius = inp(k)%radius
+      t(k)%axes = inp(k)%axes
+      t(k)%shift = inp(k)%shift
+      t(k)%frame = inp(k)%frame
+    end do
+  end function tactors3_from_input
 
   !> Volume and principal inertia per unit density of a sphere: I = 2/5 r^2 V.
   pure subroutine sphere_volume_inertia(r, vol, inertia)

@@ -77,6 +77,10 @@ contains
       case ('MAILx')
         n_mesh = n_mesh + 1
         call read_mesh_body(tf, i, bodies(ib), n_mesh, materials)
+      case ('RBDY3')
+        ! 3D rigid bodies are read by fracas_read_bodies_3d, but the scene is 2D (doc/rigid_3d.md)
+        call line_error(tf%lines(i + 1), 2, 'RBDY3 is a 3D rigid body: 3D decks are not run yet (the scene is 2D; ' &
+                        //'supported: RBDY2, MAILx)')
       case default
         call line_error(tf%lines(i + 1), 2, "unknown body model '"//model//"' (supported: RBDY2, MAILx)")
       end select
