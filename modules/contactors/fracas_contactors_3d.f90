@@ -1,8 +1,12 @@
-!> 3D contactors of rigid bodies (RBDY3): SPHER (sphere, radius) and PLANx
+!> 3D contactors of rigid bodies (RBDY3): SPHER (sphere, radius), PLANx
 !> (flat box: half lengths a1, a2 along its first two axes, half thickness a3
-!> along its third, the plane's normal), their volume and inertia per unit
-!> density, and a body's mass properties assembled from its contactors as
-!> LMGC90's RBDY3 reader does:
+!> along its third, the plane's normal) and POLYR (convex polyhedron: vertices
+!> and outward triangles), their volume and inertia per unit density, and a
+!> body's mass properties assembled from its contactors as LMGC90's RBDY3
+!> reader does. A POLYR is given its own frame when built from the input (its
+!> centroid as offset, its principal axes as frame, its vertices in them), as
+!> LMGC90 does on reading; then it is placed like the others.
+!> Assembly:
 !> - one contactor: the body's principal frame is the contactor's own frame
 !>   (a PLANx's axes, the global axes for a SPHER), its centre the node's
 !>   coordinates plus the contactor's offset; the inertia is the contactor's;
@@ -15,26 +19,32 @@
 !> Mass = density x volume, inertia = density x (volume inertia).
 module fracas_contactors_3d
   use fracas_kinds, only: wp
-  use fracas_frame_3d, only: symmetric_eigen_3x3
+  use fracas_frame_3d, only: symmetric_eigen_3x3, polyhedron_volume_inertia
   use fracas_deck_3d, only: tactor3_input_t
   implicit none
   private
-  public :: tactor3_t, tk3_spher, tk3_planx, sphere_volume_inertia, planx_volume_inertia, &
-            body3_mass_properties, tactor3_place, tactors3_from_input
+  public :: tactor3_t, tk3_spher, tk3_planx, tk3_polyr, sphere_volume_inertia, planx_volume_inertia, &
+            polyr_from_surface, body3_mass_properties, tactor3_place, tactors3_from_input, &
+            polyr_vertices, box_surface
 
-  integer, parameter :: tk3_spher = 1, tk3_planx = 2
+  integer, parameter :: tk3_spher = 1, tk3_planx = 2, tk3_polyr = 3
   real(wp), parameter :: pi = acos(-1.0_wp)
 
   !> One 3D contactor of a rigid body. Read: shift and frame in the deck's
   !> global axes (frame: columns alpha, beta, gamma); after
   !> body3_mass_properties: in the body's principal frame.
   type :: tactor3_t
-    integer :: kind = 0                  !< tk3_spher, tk3_planx
+    integer :: kind = 0                  !< tk3_spher, tk3_planx, tk3_polyr
     character(len=5) :: color = ''
     real(wp) :: radius = 0.0_wp          !< SPHER
     real(wp) :: axes(3) = 0.0_wp         !< PLANx half lengths a1, a2, half thickness a3
     real(wp) :: shift(3) = 0.0_wp        !< offset of the contactor centre
     real(wp) :: frame(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
+    ! POLYR: vertices in the contactor's frame (principal, origin at the centroid),
+    ! outward triangles (vertex indices), volume and principal moments per unit density
+    real(wp), allocatable :: vert(:, :)
+    integer, allocatable :: faces(:, :)
+    real(wp) :: volume = 0.0_wp, moments(3) = 0.0_wp
   end type tactor3_t
 
 contains
@@ -52,6 +62,10 @@ contains
       t(k)%axes = inp(k)%axes
       t(k)%shift = inp(k)%shift
       t(k)%frame = inp(k)%frame
+      if (inp(k)%kind == 'POLYR') then
+        t(k) = polyr_from_surface(inp(k)%vert, inp(k)%faces)
+        t(k)%color = inp(k)%color
+      end if
     end do
   end function tactors3_from_input
 
@@ -72,14 +86,38 @@ contains
     inertia = vol / 3.0_wp * [a(2)**2 + a(3)**2, a(1)**2 + a(3)**2, a(1)**2 + a(2)**2]
   end subroutine planx_volume_inertia
 
+  !> A POLYR from its vertices (given in the body's deck axes, relative to the
+  !> node) and outward triangles: offset = centroid, frame = principal axes,
+  !> vertices re-expressed in them (LMGC90 does the same on reading). A
+  !> non-positive volume (inward or open surface) is returned as volume <= 0.
+  pure function polyr_from_surface(vert, faces) result(t)
+    real(wp), intent(in) :: vert(:, :)
+    integer, intent(in) :: faces(:, :)
+    type(tactor3_t) :: t
+    real(wp) :: tens(3, 3)
+    integer :: k
+    t%kind = tk3_polyr
+    t%faces = faces
+    call polyhedron_volume_inertia(vert, faces, t%volume, t%shift, tens)
+    call symmetric_eigen_3x3(tens, t%moments, t%frame)
+    allocate (t%vert(3, size(vert, 2)))
+    do k = 1, size(vert, 2)
+      t%vert(:, k) = matmul(vert(:, k) - t%shift, t%frame)
+    end do
+  end function polyr_from_surface
+
   pure subroutine tactor_volume_inertia(t, vol, inertia)
     type(tactor3_t), intent(in) :: t
     real(wp), intent(out) :: vol, inertia(3)
-    if (t%kind == tk3_spher) then
+    select case (t%kind)
+    case (tk3_spher)
       call sphere_volume_inertia(t%radius, vol, inertia)
-    else
+    case (tk3_planx)
       call planx_volume_inertia(t%axes, vol, inertia)
-    end if
+    case default
+      vol = t%volume
+      inertia = t%moments
+    end select
   end subroutine tactor_volume_inertia
 
   !> Mass properties of one body from its contactors (see the module note).
@@ -145,6 +183,33 @@ contains
     at = c + matmul(f, t%shift)
     tframe = matmul(f, t%frame)
   end subroutine tactor3_place
+
+  !> The surface of a box of half lengths a (centred, axes along x, y, z) as
+  !> a POLYR takes it: 8 vertices and 12 outward triangles.
+  pure subroutine box_surface(a, vert, faces)
+    real(wp), intent(in) :: a(3)
+    real(wp), intent(out) :: vert(3, 8)
+    integer, intent(out) :: faces(3, 12)
+    integer :: k
+    do k = 1, 8   ! bottom face counter-clockwise seen from above, then the top face
+      vert(:, k) = a * [merge(1.0_wp, -1.0_wp, any(mod(k - 1, 4) == [1, 2])), merge(1.0_wp, -1.0_wp, mod(k - 1, 4) >= 2), &
+                        merge(1.0_wp, -1.0_wp, k > 4)]
+    end do
+    faces = reshape([1, 3, 2, 1, 4, 3, 5, 6, 7, 5, 7, 8, 1, 2, 6, 1, 6, 5, 4, 8, 7, 4, 7, 3, 1, 5, 8, 1, 8, 4, &
+                     2, 3, 7, 2, 7, 6], [3, 12])
+  end subroutine box_surface
+
+  !> A POLYR's vertices (global) on a body at centre c with frame f.
+  pure function polyr_vertices(t, c, f) result(v)
+    type(tactor3_t), intent(in) :: t
+    real(wp), intent(in) :: c(3), f(3, 3)
+    real(wp) :: v(3, size(t%vert, 2)), at(3), tf(3, 3)
+    integer :: k
+    call tactor3_place(t, c, f, at, tf)
+    do k = 1, size(t%vert, 2)
+      v(:, k) = at + matmul(tf, t%vert(:, k))
+    end do
+  end function polyr_vertices
 
   pure function identity() result(m)
     real(wp) :: m(3, 3)

@@ -6,7 +6,7 @@ module fracas_spplx
   use fracas_frame_3d, only: tangents_of_normal
   implicit none
   private
-  public :: spplx_geometry
+  public :: spplx_geometry, planx_face_frame
 
 contains
 
@@ -31,13 +31,7 @@ contains
     gap = 0.0_wp; point = 0.0_wp; frame = 0.0_wp
     if (.not. found) return
     if (abs(s(1)) < a(1) .and. abs(s(2)) < a(2)) then
-      if (s(3) >= 0.0_wp) then
-        frame = pf
-      else
-        frame(:, 1) = pf(:, 1)
-        frame(:, 2) = -pf(:, 2)
-        frame(:, 3) = -pf(:, 3)
-      end if
+      frame = planx_face_frame(pf, s(3) >= 0.0_wp)
       gap = abs(s(3)) - a(3) - r
     else
       q = [max(-a(1), min(a(1), s(1))), max(-a(2), min(a(2), s(2))), 0.0_wp]
@@ -50,4 +44,15 @@ contains
     end if
     point = c - (r + 0.5_wp * gap) * frame(:, 3)
   end subroutine spplx_geometry
+
+  !> The contact frame over a PLANx's face (pf: its axes alpha, beta, gamma):
+  !> (alpha, beta, gamma) over the upper face, (alpha, -beta, -gamma) over the
+  !> lower one (n from the plane towards the other body, t1 x t2 = n).
+  pure function planx_face_frame(pf, upper) result(frame)
+    real(wp), intent(in) :: pf(3, 3)
+    logical, intent(in) :: upper
+    real(wp) :: frame(3, 3)
+    frame = pf
+    if (.not. upper) frame(:, 2:3) = -pf(:, 2:3)
+  end function planx_face_frame
 end module fracas_spplx

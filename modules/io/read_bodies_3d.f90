@@ -10,6 +10,8 @@
 !>   its offset from the node); ' PLANx  1  color  COLOR
 !>   axe1= axe2= axe3=', optionally followed by 'localframe' (columns 30-39)
 !>   and the lines alpha, beta, gamma (the plane's axes) and coo1..3 (offset);
+!> - ' POLYR  1  color  COLOR  nb_vertex= nv  nb_faces= nf', nv vertex lines
+!>   (coo1..3, relative to the node) and nf lines of three vertex numbers;
 !> - $$$$$$ ends the body.
 !> DOF.INI: '$steps', then per body ' RBDY3  number' (9-15), $nodty, the
 !> NO6xx X lines (2), the V lines (2) and the alpha, beta, gamma lines.
@@ -18,6 +20,7 @@ module fracas_read_bodies_3d
   use fracas_deck, only: material_input_t
   use fracas_deck_3d, only: tactor3_input_t, body3_input_t, dof3_record_t
   use fracas_read_bodies, only: material_list
+  use fracas_frame_3d, only: polyhedron_volume_inertia, cross3
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, check_line_end, &
                                 keyword_of, is_data, get_real, get_word, get_int, itoa, rtoa, get_steps
   implicit none
@@ -189,14 +192,81 @@ contains
             i = i + 5
           end if
         end if
-      case ('POLYR', 'CYLND', 'DNLYC', 'PT3Dx', 'POLYF')
-        call line_error(ln, 2, "contactor '"//t%kind//"' is not read yet (3D: SPHER, SPHEb, PLANx)")
+      case ('POLYR')
+        call read_polyr(tf, i, t)
+      case ('CYLND', 'DNLYC', 'PT3Dx', 'POLYF')
+        call line_error(ln, 2, "contactor '"//t%kind//"' is not read yet (3D: SPHER, SPHEb, PLANx, POLYR)")
       case default
-        call line_error(ln, 2, "unknown contactor type '"//trim(t%kind)//"' for RBDY3 (supported: SPHER, SPHEb, PLANx)")
+        call line_error(ln, 2, "unknown contactor type '"//trim(t%kind)//"' for RBDY3 (supported: SPHER, SPHEb, " &
+                        //"PLANx, POLYR)")
       end select
     end associate
     i = i + 1
   end subroutine read_tactor3
+
+  !> A POLYR line ('nb_vertex=' count in columns 40-47, 'nb_faces=' in 60-67),
+  !> its vertex lines (coo1..3) and face lines (three vertex numbers in columns
+  !> 35-47, 56-68, 77-89); i ends at the last face line. The surface must
+  !> enclose a positive volume (outward triangles) and be convex (every vertex
+  !> on the inner side of every triangle's plane, to 1e-9 of the extent; a
+  !> non-convex shape is several POLYR, as in LMGC90).
+  subroutine read_polyr(tf, i, t)
+    type(text_file_t), intent(in) :: tf
+    integer, intent(inout) :: i
+    type(tactor3_input_t), intent(inout) :: t
+    integer :: nv, nf, k, j
+    integer, parameter :: face_col(3) = [35, 56, 77]
+    associate (ln => tf%lines(i))
+      nv = get_int(ln, 40, 47, "number of vertices 'nb_vertex='")
+      nf = get_int(ln, 60, 67, "number of faces 'nb_faces='")
+      if (nv < 4) call line_error(ln, 40, 'a POLYR needs at least 4 vertices, found '//itoa(nv))
+      if (nf < 4) call line_error(ln, 60, 'a POLYR needs at least 4 triangles, found '//itoa(nf))
+      call check_line_end(ln, 67, 'the POLYR line')
+      if (.not. all([(is_data(tf, i + k), k=1, nv + nf)])) &
+        call line_error(ln, 2, 'POLYR declares '//itoa(nv)//' vertices and '//itoa(nf)//' faces: '//itoa(nv + nf)// &
+                        ' lines must follow')
+    end associate
+    allocate (t%vert(3, nv), t%faces(3, nf))
+    do k = 1, nv
+      t%vert(:, k) = values3(tf%lines(i + k), 'vertex coo')
+    end do
+    do k = 1, nf
+      associate (lf => tf%lines(i + nv + k))
+        do j = 1, 3
+          t%faces(j, k) = get_int(lf, face_col(j), face_col(j) + 12, 'face vertex number')
+          if (t%faces(j, k) < 1 .or. t%faces(j, k) > nv) &
+            call line_error(lf, face_col(j), 'face vertex '//itoa(t%faces(j, k))//' does not exist (the POLYR has ' &
+                            //itoa(nv)//' vertices)')
+        end do
+        call check_line_end(lf, 89, 'a POLYR face line')
+      end associate
+    end do
+    call check_polyr_shape(tf%lines(i), t%vert, t%faces)
+    i = i + nv + nf
+  end subroutine read_polyr
+
+  subroutine check_polyr_shape(ln, vert, faces)
+    type(text_line_t), intent(in) :: ln
+    real(wp), intent(in) :: vert(:, :)
+    integer, intent(in) :: faces(:, :)
+    real(wp) :: vol, g(3), tens(3, 3), nrm(3), extent, d
+    integer :: k, j
+    call polyhedron_volume_inertia(vert, faces, vol, g, tens)
+    if (.not. vol > 0.0_wp) call line_error(ln, 2, 'POLYR encloses no positive volume (volume '//rtoa(vol)// &
+                                            '): its triangles must be closed and counter-clockwise seen from outside')
+    extent = maxval(maxval(vert, dim=2) - minval(vert, dim=2))
+    do k = 1, size(faces, 2)
+      nrm = cross3(vert(:, faces(2, k)) - vert(:, faces(1, k)), vert(:, faces(3, k)) - vert(:, faces(1, k)))
+      if (norm2(nrm) <= epsilon(1.0_wp) * extent**2) call line_error(ln, 2, 'POLYR face '//itoa(k)//' is degenerate')
+      nrm = nrm / norm2(nrm)
+      do j = 1, size(vert, 2)
+        d = dot_product(vert(:, j) - vert(:, faces(1, k)), nrm)
+        if (d > 1.0e-9_wp * extent) call line_error(ln, 2, 'POLYR is not convex: vertex '//itoa(j)// &
+                                                    ' is outside the plane of face '//itoa(k)//' by '//rtoa(d)// &
+                                                    ' (a non-convex shape is several POLYR)')
+      end do
+    end do
+  end subroutine check_polyr_shape
 
   !> The three values of a line in columns 35-48, 56-69, 77-90, nothing after.
   function values3(ln, what) result(v)

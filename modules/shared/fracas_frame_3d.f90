@@ -1,12 +1,13 @@
 !> Small 3D geometry shared by the 3D rigid body model, its contactors and the
 !> 3D detection: cross product, the exact rotation of a rotation vector
 !> (Rodrigues), an orthonormal tangent pair completing a normal, and the
-!> eigen-decomposition of a symmetric 3x3 (principal inertia frame).
+!> eigen-decomposition of a symmetric 3x3 (principal inertia frame), volume and
+!> inertia of a closed triangulated surface (POLYR).
 module fracas_frame_3d
   use fracas_kinds, only: wp
   implicit none
   private
-  public :: cross3, rotation_of_vector, tangents_of_normal, symmetric_eigen_3x3
+  public :: cross3, rotation_of_vector, tangents_of_normal, symmetric_eigen_3x3, polyhedron_volume_inertia
 
 contains
 
@@ -110,4 +111,41 @@ contains
     end do
     if (dot_product(cross3(v(:, 1), v(:, 2)), v(:, 3)) < 0.0_wp) v(:, 3) = -v(:, 3)
   end subroutine symmetric_eigen_3x3
+
+  !> Volume, centroid g and inertia tensor about g (per unit density) of the
+  !> solid bounded by a closed triangulated surface (outward triangles: each
+  !> seen counter-clockwise from outside), summed over the tetrahedra (o, a, b,
+  !> c) from a reference point o inside the hull (the vertex mean): V = det/6,
+  !> int x x^T = V/20 (a a^T + b b^T + c c^T + s s^T), s = a + b + c.
+  pure subroutine polyhedron_volume_inertia(vert, faces, vol, g, tens)
+    real(wp), intent(in) :: vert(:, :)
+    integer, intent(in) :: faces(:, :)
+    real(wp), intent(out) :: vol, g(3), tens(3, 3)
+    real(wp) :: o(3), a(3), b(3), c(3), sm(3), v, cov(3, 3)
+    integer :: k, i
+    o = sum(vert, dim=2) / size(vert, 2)
+    vol = 0.0_wp; sm = 0.0_wp; cov = 0.0_wp
+    do k = 1, size(faces, 2)
+      a = vert(:, faces(1, k)) - o
+      b = vert(:, faces(2, k)) - o
+      c = vert(:, faces(3, k)) - o
+      v = dot_product(a, cross3(b, c)) / 6.0_wp
+      vol = vol + v
+      sm = sm + v * (a + b + c) / 4.0_wp
+      cov = cov + v / 20.0_wp * (outer(a, a) + outer(b, b) + outer(c, c) + outer(a + b + c, a + b + c))
+    end do
+    g = sm / vol
+    cov = cov - vol * outer(g, g)      ! second moments about the centroid
+    g = g + o
+    tens = -cov
+    do i = 1, 3
+      tens(i, i) = tens(i, i) + (cov(1, 1) + cov(2, 2) + cov(3, 3))
+    end do
+  contains
+    pure function outer(x, y) result(m)
+      real(wp), intent(in) :: x(3), y(3)
+      real(wp) :: m(3, 3)
+      m = spread(x, 2, 3) * spread(y, 1, 3)
+    end function outer
+  end subroutine polyhedron_volume_inertia
 end module fracas_frame_3d

@@ -10,7 +10,10 @@
 program test_contactors_3d
   use fracas_kinds, only: wp
   use fracas_testing, only: check_close, check_true, test_finish
-  use fracas_contactors_3d, only: tactor3_t, tk3_spher, tk3_planx, body3_mass_properties, tactor3_place
+  use fracas_contactors_3d, only: tactor3_t, tk3_spher, tk3_planx, body3_mass_properties, tactor3_place, &
+                                  polyr_from_surface, box_surface, polyr_vertices
+  use fracas_frame_3d, only: polyhedron_volume_inertia
+  use fracas_prplx, only: prplx_contacts
   use fracas_frame_3d, only: symmetric_eigen_3x3, cross3, rotation_of_vector
   use fracas_spspx, only: spspx_geometry
   use fracas_spplx, only: spplx_geometry
@@ -22,6 +25,8 @@ program test_contactors_3d
   call eigen()
   call spsp()
   call sppl()
+  call polyr()
+  call prpl()
   call test_finish()
 
 contains
@@ -148,6 +153,79 @@ contains
     call check_close('SPPLx rim normal', norm2(f(:, 3) - (0.6_wp * pf(:, 1) + 0.8_wp * pf(:, 3))), 0.0_wp, 1.0e-15_wp)
     call check_frame('SPPLx rim', f)
   end subroutine sppl
+
+  !> POLYR: a box of half lengths (1, 0.5, 0.25) turned by R and moved by d,
+  !> against the PLANx formulas (moments ascending: V/3 (b^2 + c^2), ...,
+  !> principal axis 1 = R e1, centroid d); the corner tetrahedron (0, e1, e2,
+  !> e3): V = 1/6, centroid 1/4 (1, 1, 1), about it Ixx = 1/80, Ixy = 1/480
+  !> (int x^2 = 1/60, int xy = 1/120 over it, less the centroid's share).
+  subroutine polyr()
+    real(wp) :: vert(3, 8), r(3, 3), d(3), vol, g(3), tens(3, 3), vt(3, 4), pv(3, 8)
+    integer :: faces(3, 12), k
+    type(tactor3_t) :: t
+    call box_surface([1.0_wp, 0.5_wp, 0.25_wp], vert, faces)
+    r = rotation_of_vector([0.3_wp, 0.8_wp, -0.4_wp])
+    d = [2.0_wp, -1.0_wp, 0.5_wp]
+    do k = 1, 8
+      vert(:, k) = d + matmul(r, vert(:, k))
+    end do
+    t = polyr_from_surface(vert, faces)
+    call check_close('POLYR box: volume', t%volume, 1.0_wp, 1.0e-14_wp)
+    call check_close('POLYR box: I1 = V (b^2 + c^2) / 3', t%moments(1), 0.3125_wp / 3.0_wp, 1.0e-14_wp)
+    call check_close('POLYR box: I2 = V (a^2 + c^2) / 3', t%moments(2), 1.0625_wp / 3.0_wp, 1.0e-14_wp)
+    call check_close('POLYR box: I3 = V (a^2 + b^2) / 3', t%moments(3), 1.25_wp / 3.0_wp, 1.0e-14_wp)
+    call check_close('POLYR box: axis 1 = R e1', abs(dot_product(t%frame(:, 1), r(:, 1))), 1.0_wp, 1.0e-13_wp)
+    call check_close('POLYR box: offset = centroid', norm2(t%shift - d), 0.0_wp, 1.0e-14_wp)
+    pv = polyr_vertices(t, [0.0_wp, 0.0_wp, 0.0_wp], reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, &
+                                                             0.0_wp, 0.0_wp, 1.0_wp], [3, 3]))
+    call check_close('POLYR box: vertices placed back where read', maxval(abs(pv - vert)), 0.0_wp, 1.0e-14_wp)
+    vt = reshape([0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 4])
+    call polyhedron_volume_inertia(vt, reshape([1, 3, 2, 1, 2, 4, 1, 4, 3, 2, 3, 4], [3, 4]), vol, g, tens)
+    call check_close('tetrahedron: volume 1/6', vol, 1.0_wp / 6.0_wp, 1.0e-15_wp)
+    call check_close('tetrahedron: centroid', norm2(g - 0.25_wp), 0.0_wp, 1.0e-15_wp)
+    call check_close('tetrahedron: Ixx = 1/80', tens(1, 1), 1.0_wp / 80.0_wp, 1.0e-15_wp)
+    call check_close('tetrahedron: Ixy = 1/480', tens(1, 2), 1.0_wp / 480.0_wp, 1.0e-15_wp)
+  end subroutine polyr
+
+  !> PRPLx: a unit cube (half 0.5) over a horizontal PLANx (half thickness 0.05,
+  !> top face at z = 0): centre at z = 0.5 - 0.01: 4 bottom vertices at gap
+  !> -0.01, normal +z; tilted by 0.1 rad about x with its lowest edge's
+  !> vertices at z = -0.02: 2 points at gap -0.02 and 2 at -0.02 + sin(0.1),
+  !> within the alert 0.15 (the top vertices stay out); and under the plate
+  !> (centre at z = -0.6): the lower face, normal -z, the top vertices.
+  subroutine prpl()
+    real(wp) :: vert(3, 8), pf(3, 3), gap(4), pt(3, 4), f(3, 3), c(3), r(3, 3), zmin
+    integer :: faces(3, 12), npt, iv(4), k
+    call box_surface([0.5_wp, 0.5_wp, 0.5_wp], vert, faces)
+    pf = rotation_of_vector([0.0_wp, 0.0_wp, 0.0_wp])
+    c = [0.1_wp, 0.2_wp, 0.49_wp]
+    call prplx_contacts(spread(c, 2, 8) + vert, c, [0.0_wp, 0.0_wp, -0.05_wp], pf, [3.0_wp, 3.0_wp, 0.05_wp], &
+                        0.05_wp, npt, iv, gap, pt, f)
+    call check_true('PRPLx flat: 4 points, the bottom vertices', npt == 4 .and. all(iv <= 4))
+    call check_close('PRPLx flat: gaps -0.01', maxval(abs(gap + 0.01_wp)), 0.0_wp, 1.0e-15_wp)
+    call check_close('PRPLx flat: normal +z', norm2(f(:, 3) - [0.0_wp, 0.0_wp, 1.0_wp]), 0.0_wp, 0.0_wp)
+    call check_close('PRPLx flat: point = vertex', norm2(pt(:, 1) - (c + vert(:, iv(1)))), 0.0_wp, 0.0_wp)
+    r = rotation_of_vector([0.1_wp, 0.0_wp, 0.0_wp])
+    do k = 1, 8
+      vert(:, k) = matmul(r, vert(:, k))
+    end do
+    zmin = minval(vert(3, :))
+    c = [0.0_wp, 0.0_wp, -0.02_wp - zmin]
+    call prplx_contacts(spread(c, 2, 8) + vert, c, [0.0_wp, 0.0_wp, -0.05_wp], pf, [3.0_wp, 3.0_wp, 0.05_wp], &
+                        0.15_wp, npt, iv, gap, pt, f)
+    call check_true('PRPLx tilted: 4 points', npt == 4)
+    call check_close('PRPLx tilted: deepest gap', minval(gap), -0.02_wp, 1.0e-15_wp)
+    call check_close('PRPLx tilted: shallowest gap = -0.02 + sin 0.1', maxval(gap), -0.02_wp + sin(0.1_wp), 1.0e-15_wp)
+    call check_true('PRPLx tilted: two at each depth', count(abs(gap + 0.02_wp) < 1.0e-12_wp) == 2)
+    call box_surface([0.5_wp, 0.5_wp, 0.5_wp], vert, faces)
+    c = [0.0_wp, 0.0_wp, -0.6_wp]
+    call prplx_contacts(spread(c, 2, 8) + vert, c, [0.0_wp, 0.0_wp, 0.0_wp], pf, [3.0_wp, 3.0_wp, 0.05_wp], &
+                        0.1_wp, npt, iv, gap, pt, f)
+    call check_true('PRPLx under: the 4 top vertices', npt == 4 .and. all(iv >= 5))
+    call check_close('PRPLx under: normal -z', norm2(f(:, 3) + [0.0_wp, 0.0_wp, 1.0_wp]), 0.0_wp, 0.0_wp)
+    call check_close('PRPLx under: gap 0.6 - 0.5 - 0.05', maxval(abs(gap - 0.05_wp)), 0.0_wp, 1.0e-15_wp)
+    call check_frame('PRPLx under', f)
+  end subroutine prpl
 
   !> Columns t1, t2, n orthonormal and right-handed.
   subroutine check_frame(name, f)

@@ -5,7 +5,8 @@
 !> written in the deck, and for the mass properties the formulas (density
 !> 2500: sphere r = 0.1, m = 4/3 pi r^3 rho, I = 2/5 m r^2; two SPHEb at
 !> +-0.2 along x: I about x = 2 (2/5 m r^2), across 2 (2/5 m r^2 + 0.04 m);
-!> plate 2 x 1 x 0.1: m = 500 kg). Round-off tolerances (the deck's 8 digits
+!> plate 2 x 1 x 0.1: m = 500 kg; POLYR cube of side 0.2: m = 20 kg,
+!> I = m (0.2^2 + 0.2^2) / 12, centre at its node). Round-off tolerances (the deck's 8 digits
 !> where read values are compared: 1e-7).
 !> Planted bugs watched red: the NO6xx second line read into coo1..3 (centre
 !> z 0 for 0.15); the 'I1' line test at columns 31-32 (line taken as a
@@ -30,23 +31,25 @@ program test_read_bodies_3d
   type(dof3_record_t), allocatable :: dofs(:)
   type(tactor3_t), allocatable :: t(:)
   type(rbdy3_t) :: b
-  real(wp) :: gravity(3), centre(3, 3), frame(3, 3, 3), mass(3), inertia(3, 3), avrd(3), m1, i1, time
+  real(wp) :: gravity(3), centre(3, 4), frame(3, 3, 4), mass(4), inertia(3, 4), avrd(4), m1, i1, time
   integer :: k, step
 
   call read_bulk_behav(dir//'/BULK_BEHAV.DAT', gravity, materials)
   call read_bodies_3d(dir//'/BODIES.DAT', bodies, materials)
-  call check_true('three RBDY3 read', size(bodies) == 3)
+  call check_true('four RBDY3 read', size(bodies) == 4)
   call check_true('body 1: one SPHER, body 2: two SPHEb, body 3: one PLANx', &
                   size(bodies(1)%tactors) == 1 .and. bodies(1)%tactors(1)%kind == 'SPHER' .and. &
                   size(bodies(2)%tactors) == 2 .and. bodies(2)%tactors(2)%kind == 'SPHEb' .and. &
-                  bodies(3)%tactors(1)%kind == 'PLANx')
+                  bodies(3)%tactors(1)%kind == 'PLANx' .and. bodies(4)%tactors(1)%kind == 'POLYR')
+  call check_true('POLYR: 8 vertices, 12 faces, face 1 = (1, 3, 2)', size(bodies(4)%tactors(1)%vert, 2) == 8 .and. &
+                  size(bodies(4)%tactors(1)%faces, 2) == 12 .and. all(bodies(4)%tactors(1)%faces(:, 1) == [1, 3, 2]))
   call check_close('body 1 node z (coo3)', bodies(1)%coor(3), 0.15_wp, 1.0e-15_wp)
   call check_close('body 1 radius', bodies(1)%tactors(1)%radius, 0.1_wp, 1.0e-15_wp)
   call check_close('body 2 second SPHEb offset x', bodies(2)%tactors(2)%shift(1), -0.2_wp, 1.0e-15_wp)
   call check_close('body 3 PLANx axe2', bodies(3)%tactors(1)%axes(2), 0.5_wp, 1.0e-15_wp)
   call check_close('body 3 PLANx gamma(2) = -sin 30', bodies(3)%tactors(1)%frame(2, 3), -0.5_wp, 1.0e-15_wp)
 
-  do k = 1, 3
+  do k = 1, 4
     t = tactors3_from_input(bodies(k)%tactors)
     avrd(k) = bodies(k)%avrd
     call body3_mass_properties(t, bodies(k)%coor(1:3), rho, avrd(k), centre(:, k), frame(:, :, k), mass(k), inertia(:, k))
@@ -65,14 +68,17 @@ program test_read_bodies_3d
   call check_close('plate: frame = its localframe (30 deg about x, 8 digits)', &
                    maxval(abs(frame(:, :, 3) - rotation_of_vector([pi / 6.0_wp, 0.0_wp, 0.0_wp]))), 0.0_wp, 1.0e-7_wp)
   call check_close('plate: centre = node + offset', centre(3, 3), -0.05_wp, 1.0e-15_wp)
+  call check_close('POLYR cube: mass', mass(4), 20.0_wp, 1.0e-12_wp)
+  call check_close('POLYR cube: I = m (a^2 + b^2) / 12', inertia(2, 4), 20.0_wp * 0.08_wp / 12.0_wp, 1.0e-13_wp)
+  call check_close('POLYR cube: centre at its node', norm2(centre(:, 4) - [0.5_wp, 0.3_wp, 0.1_wp]), 0.0_wp, 1.0e-15_wp)
   call check_close('gravity z', gravity(3), -9.81_wp, 1.0e-15_wp)
 
-  call rbdy3_init(b, [1, 2, 3], centre, frame, mass, inertia, avrd, gravity)
+  call rbdy3_init(b, [1, 2, 3, 4], centre, frame, mass, inertia, avrd, gravity)
   call read_drv_dof(dir//'/DRV_DOF.DAT', dir, driven)
   call check_true('six drives on RBDY3 3', size(driven) == 6 .and. all(driven%model == 'RBDY3') .and. all(driven%body == 3))
   call rbdy3_add_drives(b, driven)
   call check_true('plate clamped', b%clamped(3) .and. .not. b%clamped(1))
-  call read_dof_3d(dir//'/DOF.INI', 3, step, time, dofs)
+  call read_dof_3d(dir//'/DOF.INI', 4, step, time, dofs)
   call check_true('DOF.INI: step 0, one record for body 1', step == 0 .and. size(dofs) == 1 .and. dofs(1)%body == 1)
   call check_close('DOF.INI: V(1)', dofs(1)%v(1), 0.5_wp, 1.0e-15_wp)
   call check_close('DOF.INI: V(5) (omega about the second principal axis)', dofs(1)%v(5), 5.0_wp, 1.0e-15_wp)
