@@ -6,7 +6,10 @@
 !> Planted bugs watched red: the parallel-axis term with + vi d d^T (4 checks:
 !> the moment about the line of centres 1.78e-2 for 1.07e-3, the axis across);
 !> SPPLx's lower face with the upper normal (normal and handedness off by 2);
-!> SPSPx's point on the candidate's surface (0.05 off).
+!> SPSPx's point on the candidate's surface (0.05 off); the polyhedron's second
+!> moments not moved to the centroid (pyramid Ixx 2.24 for 2.15: the tetrahedron and
+!> the box are blind to it, their vertex mean being their centroid); PRPLx
+!> keeping the first 4 vertices met (upside-down cube).
 program test_contactors_3d
   use fracas_kinds, only: wp
   use fracas_testing, only: check_close, check_true, test_finish
@@ -158,7 +161,9 @@ contains
   !> against the PLANx formulas (moments ascending: V/3 (b^2 + c^2), ...,
   !> principal axis 1 = R e1, centroid d); the corner tetrahedron (0, e1, e2,
   !> e3): V = 1/6, centroid 1/4 (1, 1, 1), about it Ixx = 1/80, Ixy = 1/480
-  !> (int x^2 = 1/60, int xy = 1/120 over it, less the centroid's share).
+  !> (int x^2 = 1/60, int xy = 1/120 over it, less the centroid's share); a
+  !> square pyramid (base 2 x 2, height 3; its vertex mean is not its centroid):
+  !> V = 4, centroid at h/4, Izz = V a^2/10 = 1.6, Ixx = V (a^2/20 + 3 h^2/80) = 2.15.
   subroutine polyr()
     real(wp) :: vert(3, 8), r(3, 3), d(3), vol, g(3), tens(3, 3), vt(3, 4), pv(3, 8)
     integer :: faces(3, 12), k
@@ -185,6 +190,14 @@ contains
     call check_close('tetrahedron: centroid', norm2(g - 0.25_wp), 0.0_wp, 1.0e-15_wp)
     call check_close('tetrahedron: Ixx = 1/80', tens(1, 1), 1.0_wp / 80.0_wp, 1.0e-15_wp)
     call check_close('tetrahedron: Ixy = 1/480', tens(1, 2), 1.0_wp / 480.0_wp, 1.0e-15_wp)
+    pv(:, 1:5) = reshape([-1.0_wp, -1.0_wp, 0.0_wp, 1.0_wp, -1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, &
+                          0.0_wp, 0.0_wp, 3.0_wp], [3, 5])
+    call polyhedron_volume_inertia(pv(:, 1:5), reshape([1, 3, 2, 1, 4, 3, 1, 2, 5, 2, 3, 5, 3, 4, 5, 4, 1, 5], [3, 6]), &
+                                   vol, g, tens)
+    call check_close('pyramid: volume 4', vol, 4.0_wp, 1.0e-14_wp)
+    call check_close('pyramid: centroid at h/4', norm2(g - [0.0_wp, 0.0_wp, 0.75_wp]), 0.0_wp, 1.0e-15_wp)
+    call check_close('pyramid: Izz = 1.6', tens(3, 3), 1.6_wp, 1.0e-14_wp)
+    call check_close('pyramid: Ixx = 2.15', tens(1, 1), 2.15_wp, 1.0e-14_wp)
   end subroutine polyr
 
   !> PRPLx: a unit cube (half 0.5) over a horizontal PLANx (half thickness 0.05,
@@ -192,7 +205,9 @@ contains
   !> -0.01, normal +z; tilted by 0.1 rad about x with its lowest edge's
   !> vertices at z = -0.02: 2 points at gap -0.02 and 2 at -0.02 + sin(0.1),
   !> within the alert 0.15 (the top vertices stay out); and under the plate
-  !> (centre at z = -0.6): the lower face, normal -z, the top vertices.
+  !> (centre at z = -0.6): the lower face, normal -z, the top vertices; the
+  !> cube upside down (vertices 5-8 at the bottom) with an alert taking all 8:
+  !> the 4 deepest are kept, 5-8.
   subroutine prpl()
     real(wp) :: vert(3, 8), pf(3, 3), gap(4), pt(3, 4), f(3, 3), c(3), r(3, 3), zmin
     integer :: faces(3, 12), npt, iv(4), k
@@ -225,6 +240,14 @@ contains
     call check_close('PRPLx under: normal -z', norm2(f(:, 3) + [0.0_wp, 0.0_wp, 1.0_wp]), 0.0_wp, 0.0_wp)
     call check_close('PRPLx under: gap 0.6 - 0.5 - 0.05', maxval(abs(gap - 0.05_wp)), 0.0_wp, 1.0e-15_wp)
     call check_frame('PRPLx under', f)
+    r = rotation_of_vector([pi, 0.0_wp, 0.0_wp])
+    do k = 1, 8
+      vert(:, k) = matmul(r, vert(:, k))
+    end do
+    c = [0.0_wp, 0.0_wp, 0.5_wp]
+    call prplx_contacts(spread(c, 2, 8) + vert, c, [0.0_wp, 0.0_wp, -0.05_wp], pf, [3.0_wp, 3.0_wp, 0.05_wp], &
+                        2.0_wp, npt, iv, gap, pt, f)
+    call check_true('PRPLx upside down, alert 2: the 4 deepest (5-8) kept', npt == 4 .and. all(iv >= 5))
   end subroutine prpl
 
   !> Columns t1, t2, n orthonormal and right-handed.
