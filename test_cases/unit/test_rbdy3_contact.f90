@@ -15,11 +15,18 @@
 !>    friction 2/7 m g sin alpha, and the rolling condition holds (the scheme
 !>    holds them exactly per step: 1e-9 relative); slipping (alpha = 30 deg,
 !>    mu = 0.1 < 2/7 tan alpha = 0.165) a = g (sin alpha - mu cos alpha) and
-!>    the angular acceleration 5 mu g cos alpha / (2 R).
+!>    the angular acceleration 5 mu g cos alpha / (2 R);
+!> 5. a cube (POLYR) face down on the PLANx, PRPLx's 4 points, Gauss-Seidel
+!>    over them in the test (until the impulses move < 1e-15 m g h): at rest
+!>    the normal forces sum to m g (1e-10 relative, hyperstatic: only the sum
+!>    is determined); on a 20 deg incline with mu = 0.5 > tan alpha it sticks
+!>    (a = 0, friction m g sin alpha), at 30 deg with mu = 0.3 it slides with
+!>    a = g (sin alpha - mu cos alpha) (1e-9 g) without turning.
 !> Planted bugs watched red: the levers as F (r x e_k) instead of F^T (r x e_k)
 !> (checks 1 and 2, 10 failures; the rolling is blind to it: a sphere's frame
 !> is the identity); the Delassus block without its rotational part (checks 2
-!> and 4: a = 2.388 for 2.397, friction 48.3 N for 10.04 N).
+!> and 4: a = 2.388 for 2.397, friction 48.3 N for 10.04 N); PRPLx's gap with
+!> + a3 (check 5: no contact found).
 program test_rbdy3_contact
   use fracas_kinds, only: wp
   use fracas_testing, only: check_close, check_true, test_finish
@@ -28,17 +35,22 @@ program test_rbdy3_contact
                           rbdy3_end_step
   use fracas_rbdy3_side, only: rigid3_levers, rigid3_add_delassus, rigid3_add_velocity, rigid3_pair_velocity, &
                                rigid3_pair_impulse
-  use fracas_contactors_3d, only: tactor3_t, tk3_spher, tk3_planx, body3_mass_properties
+  use fracas_contactors_3d, only: tactor3_t, tk3_spher, tk3_planx, body3_mass_properties, box_surface, &
+                                  polyr_from_surface, polyr_vertices
   use fracas_spplx, only: spplx_geometry
+  use fracas_prplx, only: prplx_contacts
   use fracas_frame_3d, only: cross3, rotation_of_vector
   use fracas_local_solver, only: coulomb_3d, inverse_block_3d
   implicit none
   real(wp), parameter :: pi = acos(-1.0_wp), grav = 9.81_wp, radius = 0.1_wp, rho = 2500.0_wp
 
   call h_and_delassus()
-  call incline(0.0_wp, 0.5_wp, 1, 'rest on a plane')
-  call incline(20.0_wp * pi / 180.0_wp, 0.5_wp, 400, 'rolling (stick)')
-  call incline(30.0_wp * pi / 180.0_wp, 0.1_wp, 400, 'sliding')
+  call incline('sphere', 0.0_wp, 0.5_wp, 1, 'sphere at rest on a plane')
+  call incline('sphere', 20.0_wp * pi / 180.0_wp, 0.5_wp, 400, 'sphere rolling (stick)')
+  call incline('sphere', 30.0_wp * pi / 180.0_wp, 0.1_wp, 400, 'sphere sliding')
+  call incline('cube', 0.0_wp, 0.5_wp, 1, 'cube at rest on a plane')
+  call incline('cube', 20.0_wp * pi / 180.0_wp, 0.5_wp, 200, 'cube sticking')
+  call incline('cube', 30.0_wp * pi / 180.0_wp, 0.3_wp, 200, 'cube sliding')
   call test_finish()
 
 contains
@@ -73,31 +85,42 @@ contains
     end do
   end subroutine h_and_delassus
 
-  !> Sphere (body 1) on a PLANx (body 2, every dof held at 0 by DRV_DOF-like
-  !> drives) inclined by alpha about x; starts at rest, touching (gap 0).
-  subroutine incline(alpha, mu, nstep, name)
+  !> A sphere (radius 0.1) or a cube (POLYR, half side 0.1, face down) as body
+  !> 1 on a PLANx (body 2, every dof held at 0 by DRV_DOF-like drives) inclined
+  !> by alpha about x; starts at rest, touching (gap 0). Each step: detection
+  !> (SPPLx, or PRPLx: 4 points), then Gauss-Seidel over the contacts with the
+  !> exact local solver until the impulses move by less than 1e-15 m g h.
+  subroutine incline(shape, alpha, mu, nstep, name)
+    character(len=*), intent(in) :: shape, name
     real(wp), intent(in) :: alpha, mu
     integer, intent(in) :: nstep
-    character(len=*), intent(in) :: name
-    real(wp), parameter :: h = 1.0e-3_wp, theta = 0.5_wp
+    real(wp), parameter :: h = 1.0e-3_wp, theta = 0.5_wp, half = 0.1_wp
     type(rbdy3_t) :: b
     type(tactor3_t) :: ts(1), tp(1)
     type(driven_dof_input_t) :: hold(6)
-    real(wp) :: cs(3), fs(3, 3), ms, is(3), cp(3), fp(3, 3), mp, ip(3), avrd, q(3, 2), ftt(3, 3, 2), gap, pt(3), cf(3, 3)
-    real(wp) :: lever(18), w(9), uf(3), rl(3), rsum(3), down(3), t, a, aref, omega_dot
-    logical :: found
-    integer :: k, st
+    real(wp) :: cs(3), fs(3, 3), ms, is(3), cp(3), fp(3, 3), mp, ip(3), avrd, q(3, 2), ftt(3, 3, 2), vert(3, 8)
+    real(wp) :: gap(4), pt(3, 4), cf(3, 3), lever(18, 4), w(9, 4), rl(3, 4), rnew(3), uf(3), rsum(3), down(3), t, a, aref
+    real(wp) :: omega_dot, dmax
+    integer :: faces(3, 12), iv(4), i, k, j, np, it, st
+    logical :: found, cube
+    cube = shape == 'cube'
     tp(1)%kind = tk3_planx
     tp(1)%axes = [10.0_wp, 10.0_wp, 0.05_wp]
     tp(1)%frame = rotation_of_vector([alpha, 0.0_wp, 0.0_wp])
     avrd = 0.0_wp
     call body3_mass_properties(tp, [0.0_wp, 0.0_wp, 0.0_wp], rho, avrd, cp, fp, mp, ip)
-    ts(1)%kind = tk3_spher
-    ts(1)%radius = radius
+    if (cube) then
+      call box_surface([half, half, half], vert, faces)
+      vert = matmul(fp, vert)      ! face down on the incline
+      ts(1) = polyr_from_surface(vert, faces)
+    else
+      ts(1)%kind = tk3_spher
+      ts(1)%radius = radius
+    end if
     avrd = 0.0_wp
-    call body3_mass_properties(ts, cp + (0.05_wp + radius) * fp(:, 3), rho, avrd, cs, fs, ms, is)
+    call body3_mass_properties(ts, cp + (0.05_wp + half) * fp(:, 3), rho, avrd, cs, fs, ms, is)
     call rbdy3_init(b, [1, 2], reshape([cs, cp], [3, 2]), reshape([fs, fp], [3, 3, 2]), [ms, mp], &
-                    reshape([is, ip], [3, 2]), [radius, 1.0_wp], [0.0_wp, 0.0_wp, -grav])
+                    reshape([is, ip], [3, 2]), [avrd, 1.0_wp], [0.0_wp, 0.0_wp, -grav])
     do k = 1, 6
       hold(k)%kind = 'vlocy'
       hold(k)%body = 2
@@ -107,25 +130,48 @@ contains
     down = -fp(:, 2)
     rl = 0.0_wp
     t = 0.0_wp
+    found = .true.
     do k = 1, nstep
       call rbdy3_begin_step(b, t, h, theta)
       call rbdy3_detection_config(b, h, theta, q, ftt)
-      call spplx_geometry(q(:, 1), radius, q(:, 2), ftt(:, :, 2), tp(1)%axes, 1.0e-3_wp, found, gap, pt, cf)
-      if (.not. found) exit
-      lever(1:9) = rigid3_levers(pt - q(:, 1), cf, ftt(:, :, 1))
-      lever(10:18) = rigid3_levers(pt - q(:, 2), cf, ftt(:, :, 2))
-      w = 0.0_wp
-      call rigid3_add_delassus(b%inv_mass(:, 1), cf, lever(1:9), w)
-      call rigid3_add_delassus(b%inv_mass(:, 2), cf, lever(10:18), w)
-      uf = rigid3_pair_velocity(b%vfree(:, 1), b%vfree(:, 2), cf, lever)
-      uf(3) = uf(3) + max(0.0_wp, gap) / h
-      call solve(uf, w, mu, rl, st)
-      call rigid3_pair_impulse(b%v(:, 1), b%inv_mass(:, 1), b%v(:, 2), b%inv_mass(:, 2), cf, lever, rl)
+      if (cube) then
+        call prplx_contacts(polyr_vertices(ts(1), q(:, 1), ftt(:, :, 1)), q(:, 1), q(:, 2), ftt(:, :, 2), tp(1)%axes, &
+                            1.0e-3_wp, np, iv, gap, pt, cf)
+        found = found .and. np == 4
+      else
+        call spplx_geometry(q(:, 1), radius, q(:, 2), ftt(:, :, 2), tp(1)%axes, 1.0e-3_wp, found, gap(1), pt(:, 1), cf)
+        np = merge(1, 0, found)
+      end if
+      if (np == 0) exit
+      do j = 1, np
+        lever(1:9, j) = rigid3_levers(pt(:, j) - q(:, 1), cf, ftt(:, :, 1))
+        lever(10:18, j) = rigid3_levers(pt(:, j) - q(:, 2), cf, ftt(:, :, 2))
+        w(:, j) = 0.0_wp
+        call rigid3_add_delassus(b%inv_mass(:, 1), cf, lever(1:9, j), w(:, j))
+        call rigid3_add_delassus(b%inv_mass(:, 2), cf, lever(10:18, j), w(:, j))
+        call rigid3_pair_impulse(b%v(:, 1), b%inv_mass(:, 1), b%v(:, 2), b%inv_mass(:, 2), cf, lever(:, j), rl(:, j))
+      end do
+      do it = 1, 10000       ! Gauss-Seidel from last step's impulses (same contacts: a flat face or one sphere)
+        dmax = 0.0_wp
+        do j = 1, np
+          uf = rigid3_pair_velocity(b%v(:, 1), b%v(:, 2), cf, lever(:, j)) - [(dot_product(w(3 * i - 2:3 * i, j), &
+                                                                                            rl(:, j)), i=1, 3)]
+          uf(3) = uf(3) + max(0.0_wp, gap(j)) / h
+          rnew = rl(:, j)
+          call solve(uf, w(:, j), mu, rnew, st)
+          call rigid3_pair_impulse(b%v(:, 1), b%inv_mass(:, 1), b%v(:, 2), b%inv_mass(:, 2), cf, lever(:, j), &
+                                   rnew - rl(:, j))
+          dmax = max(dmax, maxval(abs(rnew - rl(:, j))))
+          rl(:, j) = rnew
+        end do
+        if (dmax <= 1.0e-15_wp * ms * grav * h) exit
+      end do
       call rbdy3_end_step(b, h, theta)
       t = k * h
     end do
     call check_true(name//': in contact every step', found)
-    rsum = rl / h
+    if (.not. found) return
+    rsum = sum(rl(:, 1:max(np, 1)), dim=2) / h
     if (nstep == 1) then
       call check_close(name//': normal force = m g', rsum(3), ms * grav, 1.0e-10_wp * ms * grav)
       call check_close(name//': no friction', norm2(rsum(1:2)), 0.0_wp, 1.0e-10_wp * ms * grav)
@@ -137,7 +183,17 @@ contains
     call check_close(name//': no motion off the slope', abs(dot_product(b%v(1:3, 1), fp(:, 1))) + &
                      abs(dot_product(b%v(1:3, 1), fp(:, 3))), 0.0_wp, 1.0e-9_wp)
     omega_dot = norm2(matmul(b%frame(:, :, 1), b%v(4:6, 1))) / t
-    if (mu > 2.0_wp / 7.0_wp * tan(alpha)) then
+    if (cube) then
+      if (mu > tan(alpha)) then
+        aref = 0.0_wp
+        call check_close(name//': friction = m g sin alpha', norm2(rsum(1:2)), ms * grav * sin(alpha), 1.0e-9_wp * ms * grav)
+      else
+        aref = grav * (sin(alpha) - mu * cos(alpha))
+        call check_close(name//': friction = mu N', norm2(rsum(1:2)), mu * rsum(3), 1.0e-9_wp * ms * grav)
+      end if
+      call check_close(name//': a (0 sticking, g (sin alpha - mu cos alpha) sliding)', a, aref, 1.0e-9_wp * grav)
+      call check_close(name//': no rotation', omega_dot, 0.0_wp, 1.0e-9_wp * grav / half)
+    else if (mu > 2.0_wp / 7.0_wp * tan(alpha)) then
       aref = 5.0_wp / 7.0_wp * grav * sin(alpha)
       call check_close(name//': a = 5/7 g sin alpha', a, aref, 1.0e-9_wp * aref)
       call check_close(name//': friction = 2/7 m g sin alpha', norm2(rsum(1:2)), 2.0_wp / 7.0_wp * ms * grav * sin(alpha), &
