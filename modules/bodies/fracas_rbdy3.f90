@@ -20,8 +20,7 @@
 module fracas_rbdy3
   use fracas_kinds, only: wp
   use fracas_deck, only: driven_dof_input_t
-  use fracas_errors, only: input_error
-  use fracas_drives, only: drive_t, drive_from_input, drive_value
+  use fracas_drives, only: drive_t, drives_build, drives_begin_step, drives_impose_end
   use fracas_frame_3d, only: cross3, rotation_of_vector
   implicit none
   private
@@ -52,54 +51,35 @@ contains
     type(rbdy3_t), intent(out) :: b
     integer, intent(in) :: number(:)
     real(wp), intent(in) :: ref(:, :), frame(:, :, :), mass(:), inertia(:, :), avrd(:), gravity(3)
-    integer :: n
-    n = size(number)
-    b%n = n
+    b%n = size(number)
     b%number = number
     b%ref = ref
     b%frame = frame
     b%frame_begin = frame
     b%avrd = avrd
     b%gravity = gravity
-    allocate (b%x(3, n), b%xbegin(3, n), b%v(6, n), b%vbegin(6, n), b%vfree(6, n), b%fext(6, n), &
-              b%mass(6, n), b%inv_mass(6, n), b%driven(6, n), b%clamped(n))
-    b%x = 0.0_wp; b%xbegin = 0.0_wp; b%v = 0.0_wp; b%vbegin = 0.0_wp; b%vfree = 0.0_wp; b%fext = 0.0_wp
-    b%mass(1, :) = mass
-    b%mass(2, :) = mass
-    b%mass(3, :) = mass
+    b%mass = spread([1.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], 2, b%n) * spread(mass, 1, 6)
     b%mass(4:6, :) = inertia
-    where (b%mass > 1.0_wp / huge(1.0_wp))
-      b%inv_mass = 1.0_wp / b%mass
-    elsewhere
-      b%inv_mass = huge(1.0_wp)
-    end where
-    b%driven = .false.
-    b%clamped = .false.
+    ! kept finite until a start check refuses a mass whose inverse overflows (as rbdy2)
+    b%inv_mass = finite_inverse(b%mass)
+    allocate (b%x(3, b%n), b%xbegin(3, b%n), source=0.0_wp)
+    allocate (b%v(6, b%n), b%vbegin(6, b%n), b%vfree(6, b%n), b%fext(6, b%n), source=0.0_wp)
+    allocate (b%driven(6, b%n), b%clamped(b%n), source=.false.)
     allocate (b%drives(0))
   end subroutine rbdy3_init
+
+  elemental real(wp) function finite_inverse(m) result(inv)
+    real(wp), intent(in) :: m
+    inv = huge(1.0_wp)
+    if (m > 1.0_wp / huge(1.0_wp)) inv = 1.0_wp / m
+  end function finite_inverse
 
   !> The driven dofs of DRV_DOF.DAT (body serial number = index; dofs 1..3 the
   !> global translations, 4..6 the rotations about the principal axes, as LMGC90).
   subroutine rbdy3_add_drives(b, inputs)
     type(rbdy3_t), intent(inout) :: b
     type(driven_dof_input_t), intent(in) :: inputs(:)
-    integer :: k
-    deallocate (b%drives)
-    allocate (b%drives(size(inputs)))
-    do k = 1, size(inputs)
-      associate (inp => inputs(k), d => b%drives(k))
-        if (inp%body < 1 .or. inp%body > b%n) &
-          call input_error(inp%src%file, inp%src%line, 9, 'driven body number out of range')
-        if (inp%dof < 1 .or. inp%dof > 6) &
-          call input_error(inp%src%file, inp%src%line, 9, 'dof index must be 1..6 for RBDY3')
-        d = drive_from_input(inp, inp%body)
-        if (d%is_velocity) then
-          b%driven(d%dof, d%body) = .true.
-          b%inv_mass(d%dof, d%body) = 0.0_wp
-          b%clamped(d%body) = all(b%driven(:, d%body))
-        end if
-      end associate
-    end do
+    call drives_build(inputs, b%driven, b%inv_mass, b%clamped, b%drives)
   end subroutine rbdy3_add_drives
 
   !> -(omega x I omega): the torque that, explicit, makes Euler's equations
@@ -116,27 +96,14 @@ contains
   subroutine rbdy3_begin_step(b, t, h, theta)
     type(rbdy3_t), intent(inout) :: b
     real(wp), intent(in) :: t, h, theta
-    integer :: i, k
+    integer :: i
     do i = 1, b%n
       b%fext(1:3, i) = b%mass(1:3, i) * b%gravity
       b%fext(4:6, i) = gyroscopic_torque(b%mass(4:6, i), b%vbegin(4:6, i))
     end do
-    do k = 1, size(b%drives)
-      associate (d => b%drives(k))
-        if (d%is_velocity) then
-          b%vbegin(d%dof, d%body) = drive_value(d, t)
-        else
-          b%fext(d%dof, d%body) = b%fext(d%dof, d%body) + &
-            (1.0_wp - theta) * drive_value(d, t) + theta * drive_value(d, t + h)
-        end if
-      end associate
-    end do
+    call drives_begin_step(b%drives, t, h, theta, b%fext, b%vbegin)
     b%vfree = b%vbegin + h * b%inv_mass * b%fext
-    do k = 1, size(b%drives)
-      associate (d => b%drives(k))
-        if (d%is_velocity) b%vfree(d%dof, d%body) = drive_value(d, t + h)
-      end associate
-    end do
+    call drives_impose_end(b%drives, t, h, b%vfree)
     b%v = b%vfree
   end subroutine rbdy3_begin_step
 

@@ -19,7 +19,7 @@
 !> Mass = density x volume, inertia = density x (volume inertia).
 module fracas_contactors_3d
   use fracas_kinds, only: wp
-  use fracas_frame_3d, only: symmetric_eigen_3x3, polyhedron_volume_inertia
+  use fracas_frame_3d, only: symmetric_eigen_3x3, polyhedron_volume_inertia, identity3
   use fracas_deck_3d, only: tactor3_input_t
   implicit none
   private
@@ -141,7 +141,7 @@ contains
       centre = node + t(1)%shift
       frame = t(1)%frame
       t(1)%shift = 0.0_wp
-      t(1)%frame = identity()
+      t(1)%frame = identity3()
     else
       og = 0.0_wp
       vol = 0.0_wp
@@ -210,10 +210,4 @@ contains
       v(:, k) = at + matmul(tf, t%vert(:, k))
     end do
   end function polyr_vertices
-
-  pure function identity() result(m)
-    real(wp) :: m(3, 3)
-    m = 0.0_wp
-    m(1, 1) = 1.0_wp; m(2, 2) = 1.0_wp; m(3, 3) = 1.0_wp
-  end function identity
 end module fracas_contactors_3d

@@ -19,8 +19,8 @@ module fracas_read_bodies_3d
   use fracas_kinds, only: wp
   use fracas_deck, only: material_input_t
   use fracas_deck_3d, only: tactor3_input_t, body3_input_t, dof3_record_t
-  use fracas_read_bodies, only: material_list
-  use fracas_frame_3d, only: polyhedron_volume_inertia, cross3
+  use fracas_read_bodies, only: check_material_defined
+  use fracas_frame_3d, only: polyhedron_volume_inertia, cross3, identity3
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, check_line_end, &
                                 keyword_of, is_data, get_real, get_word, get_int, itoa, rtoa, get_steps
   implicit none
@@ -40,10 +40,7 @@ contains
     type(text_file_t) :: tf
     integer :: i, nb, ib
     call load_text(path, tf)
-    nb = 0
-    do i = 1, tf%n
-      if (keyword_of(tf%lines(i)) == 'bdyty') nb = nb + 1
-    end do
+    nb = count([(keyword_of(tf%lines(i)) == 'bdyty', i=1, tf%n)])
     allocate (bodies(nb))
     ib = 0
     i = 1
@@ -124,8 +121,6 @@ contains
     integer, intent(inout) :: i
     type(body3_input_t), intent(inout) :: b
     type(material_input_t), intent(in), optional :: materials(:)
-    integer :: k
-    logical :: found
     associate (ln => tf%lines(i))
       if (get_word(ln, 2, 6, 'bulk element type') /= 'PLAIN') &
         call line_error(ln, 2, "unknown bulk element '"//trim(field(ln, 2, 6))//"' for RBDY3 (supported: PLAIN)")
@@ -133,14 +128,7 @@ contains
       b%avrd = get_real(ln, 35, 48, "average radius 'avrd='")
       if (b%avrd < 0.0_wp) call line_error(ln, 35, 'avrd must be >= 0 (0: computed from the contactors), found '//rtoa(b%avrd))
       call check_line_end(ln, 48, 'the PLAIN line')
-      if (present(materials)) then
-        found = .false.
-        do k = 1, size(materials)
-          if (materials(k)%nickname == b%behav) found = .true.
-        end do
-        if (.not. found) call line_error(ln, 23, "material '"//trim(b%behav)// &
-                                         "' is not defined in BULK_BEHAV.DAT (defined: "//material_list(materials)//')')
-      end if
+      if (present(materials)) call check_material_defined(ln, b%behav, materials)
     end associate
     i = i + 1
     if (.not. is_data(tf, i)) return
@@ -185,8 +173,7 @@ contains
             end do
             t%shift = values3(tf%lines(i + 5), 'coo')
             ! an orthonormal right-handed frame, to the 7 digits the file keeps
-            g = maxval(abs(matmul(transpose(t%frame), t%frame) - reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
-                                                                         0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 3])))
+            g = maxval(abs(matmul(transpose(t%frame), t%frame) - identity3()))
             if (g > 1.0e-6_wp) call line_error(tf%lines(i + 2), 35, 'the PLANx localframe is not orthonormal ' &
                                                 //'(|F^T F - I| = '//rtoa(g)//')')
             i = i + 5
@@ -294,11 +281,7 @@ contains
     call load_text(path, tf)
     step = 0
     time = 0.0_wp
-    n = 0
-    do i = 1, tf%n
-      if (keyword_of(tf%lines(i)) == 'bdyty') n = n + 1
-    end do
-    allocate (records(n), seen(nbodies))
+    allocate (records(count([(keyword_of(tf%lines(i)) == 'bdyty', i=1, tf%n)])), seen(nbodies))
     seen = 0
     n = 0
     i = 1

@@ -7,7 +7,8 @@ module fracas_frame_3d
   use fracas_kinds, only: wp
   implicit none
   private
-  public :: cross3, rotation_of_vector, tangents_of_normal, symmetric_eigen_3x3, polyhedron_volume_inertia
+  public :: cross3, identity3, rotation_of_vector, tangents_of_normal, symmetric_eigen_3x3, polyhedron_volume_inertia, &
+            local3_to_fclib
 
 contains
 
@@ -16,6 +17,29 @@ contains
     real(wp) :: c(3)
     c = [a(2) * b(3) - a(3) * b(2), a(3) * b(1) - a(1) * b(3), a(1) * b(2) - a(2) * b(1)]
   end function cross3
+
+  pure function identity3() result(m)
+    real(wp) :: m(3, 3)
+    m = 0.0_wp
+    m(1, 1) = 1.0_wp; m(2, 2) = 1.0_wp; m(3, 3) = 1.0_wp
+  end function identity3
+
+  !> A 3D local block and vector from the contact store's order (t1, t2, n),
+  !> the block by rows (fracas_contacts), to FCLib's (n, t1, t2), the block
+  !> column-major (the order of fracas_local_solver's coulomb_3d); back with
+  !> v(perm) = vf, perm = [3, 1, 2].
+  pure subroutine local3_to_fclib(w, q, wf, qf)
+    real(wp), intent(in) :: w(9), q(3)
+    real(wp), intent(out) :: wf(9), qf(3)
+    integer, parameter :: perm(3) = [3, 1, 2]   ! FCLib index -> store index
+    integer :: i, j
+    do j = 1, 3
+      do i = 1, 3
+        wf(i + 3 * (j - 1)) = w(3 * (perm(i) - 1) + perm(j))
+      end do
+    end do
+    qf = q(perm)
+  end subroutine local3_to_fclib
 
   !> The rotation matrix exp([phi]x) of the rotation vector phi (angle |phi|
   !> about phi / |phi|), Rodrigues' formula; Taylor terms below |phi| = 1e-4

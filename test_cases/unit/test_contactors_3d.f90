@@ -17,7 +17,7 @@ program test_contactors_3d
                                   polyr_from_surface, box_surface, polyr_vertices
   use fracas_frame_3d, only: polyhedron_volume_inertia
   use fracas_prplx, only: prplx_contacts
-  use fracas_frame_3d, only: symmetric_eigen_3x3, cross3, rotation_of_vector
+  use fracas_frame_3d, only: symmetric_eigen_3x3, cross3, rotation_of_vector, identity3
   use fracas_spspx, only: spspx_geometry
   use fracas_spplx, only: spplx_geometry
   implicit none
@@ -181,8 +181,7 @@ contains
     call check_close('POLYR box: I3 = V (a^2 + b^2) / 3', t%moments(3), 1.25_wp / 3.0_wp, 1.0e-14_wp)
     call check_close('POLYR box: axis 1 = R e1', abs(dot_product(t%frame(:, 1), r(:, 1))), 1.0_wp, 1.0e-13_wp)
     call check_close('POLYR box: offset = centroid', norm2(t%shift - d), 0.0_wp, 1.0e-14_wp)
-    pv = polyr_vertices(t, [0.0_wp, 0.0_wp, 0.0_wp], reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, &
-                                                             0.0_wp, 0.0_wp, 1.0_wp], [3, 3]))
+    pv = polyr_vertices(t, [0.0_wp, 0.0_wp, 0.0_wp], identity3())
     call check_close('POLYR box: vertices placed back where read', maxval(abs(pv - vert)), 0.0_wp, 1.0e-14_wp)
     vt = reshape([0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 4])
     call polyhedron_volume_inertia(vt, reshape([1, 3, 2, 1, 2, 4, 1, 4, 3, 2, 3, 4], [3, 4]), vol, g, tens)
@@ -212,7 +211,7 @@ contains
     real(wp) :: vert(3, 8), pf(3, 3), gap(4), pt(3, 4), f(3, 3), c(3), r(3, 3), zmin
     integer :: faces(3, 12), npt, iv(4), k
     call box_surface([0.5_wp, 0.5_wp, 0.5_wp], vert, faces)
-    pf = rotation_of_vector([0.0_wp, 0.0_wp, 0.0_wp])
+    pf = identity3()
     c = [0.1_wp, 0.2_wp, 0.49_wp]
     call prplx_contacts(spread(c, 2, 8) + vert, c, [0.0_wp, 0.0_wp, -0.05_wp], pf, [3.0_wp, 3.0_wp, 0.05_wp], &
                         0.05_wp, npt, iv, gap, pt, f)
@@ -254,10 +253,7 @@ contains
   subroutine check_frame(name, f)
     character(len=*), intent(in) :: name
     real(wp), intent(in) :: f(3, 3)
-    real(wp) :: id(3, 3)
-    id = 0.0_wp
-    id(1, 1) = 1.0_wp; id(2, 2) = 1.0_wp; id(3, 3) = 1.0_wp
-    call check_close(name//' frame orthonormal', maxval(abs(matmul(transpose(f), f) - id)), 0.0_wp, 1.0e-15_wp)
+    call check_close(name//' frame orthonormal', maxval(abs(matmul(transpose(f), f) - identity3())), 0.0_wp, 1.0e-15_wp)
     call check_close(name//' frame t1 x t2 = n', norm2(cross3(f(:, 1), f(:, 2)) - f(:, 3)), 0.0_wp, 1.0e-15_wp)
   end subroutine check_frame
 end program test_contactors_3d

@@ -39,7 +39,7 @@ program test_rbdy3_contact
                                   polyr_from_surface, polyr_vertices
   use fracas_spplx, only: spplx_geometry
   use fracas_prplx, only: prplx_contacts
-  use fracas_frame_3d, only: cross3, rotation_of_vector
+  use fracas_frame_3d, only: cross3, rotation_of_vector, local3_to_fclib
   use fracas_local_solver, only: coulomb_3d, inverse_block_3d
   implicit none
   real(wp), parameter :: pi = acos(-1.0_wp), grav = 9.81_wp, radius = 0.1_wp, rho = 2500.0_wp
@@ -217,17 +217,10 @@ contains
     real(wp), intent(in) :: uf(3), w(9), mu
     real(wp), intent(inout) :: r(3)
     integer, intent(out) :: status
-    integer, parameter :: perm(3) = [3, 1, 2]   ! FCLib index -> store index
     real(wp) :: wf(9), qf(3), rf(3)
-    integer :: i, j
-    do j = 1, 3
-      do i = 1, 3
-        wf(i + 3 * (j - 1)) = w(3 * (perm(i) - 1) + perm(j))
-      end do
-    end do
-    qf = uf(perm)
-    rf = r(perm)
+    call local3_to_fclib(w, uf, wf, qf)
+    call local3_to_fclib(w, r, wf, rf)
     call coulomb_3d(qf, wf, inverse_block_3d(wf), mu, rf, status)
-    r(perm) = rf
+    r([3, 1, 2]) = rf
   end subroutine solve
 end program test_rbdy3_contact

@@ -25,6 +25,7 @@ program test_rbdy3_free_rotation
   use fracas_testing, only: check_close, check_true, test_finish
   use fracas_rbdy3, only: rbdy3_t, rbdy3_init, rbdy3_begin_step, rbdy3_end_step, rbdy3_kinetic_energy, &
                           rbdy3_angular_momentum
+  use fracas_frame_3d, only: identity3
   implicit none
   real(wp), parameter :: inertia(3) = [1.0_wp, 2.0_wp, 3.0_wp], omega0(3) = [1.0e-3_wp, 2.0_wp, 1.0e-3_wp]
   real(wp), parameter :: t_end = 20.0_wp
@@ -56,11 +57,9 @@ contains
     real(wp), intent(in) :: h
     real(wp), intent(out) :: de, dl, dlv, tcross, orth, wmin, wlast
     type(rbdy3_t) :: b
-    real(wp) :: frame(3, 3, 1), e0, l0(3), t, ident(3, 3), wprev
+    real(wp) :: frame(3, 3, 1), e0, l0(3), t, wprev
     integer :: k, nstep
-    frame = 0.0_wp
-    frame(1, 1, 1) = 1.0_wp; frame(2, 2, 1) = 1.0_wp; frame(3, 3, 1) = 1.0_wp
-    ident = frame(:, :, 1)
+    frame(:, :, 1) = identity3()
     call rbdy3_init(b, [1], reshape([0.0_wp, 0.0_wp, 0.0_wp], [3, 1]), frame, [1.0_wp], &
                     reshape(inertia, [3, 1]), [1.0_wp], [0.0_wp, 0.0_wp, 0.0_wp])
     b%vbegin(4:6, 1) = omega0
@@ -84,7 +83,7 @@ contains
         tcross = t - h * b%v(5, 1) / (b%v(5, 1) - wprev)
       wmin = min(wmin, b%v(5, 1))
     end do
-    orth = maxval(abs(matmul(transpose(b%frame(:, :, 1)), b%frame(:, :, 1)) - ident))
+    orth = maxval(abs(matmul(transpose(b%frame(:, :, 1)), b%frame(:, :, 1)) - identity3()))
     wlast = b%v(5, 1)
   end subroutine run
 
