@@ -8,7 +8,7 @@ module fracas_drives
   use fracas_errors, only: input_error
   implicit none
   private
-  public :: drive_t, drive_from_input, drive_value, drives_build, drives_begin_step, drives_impose_end
+  public :: drive_t, drive_from_input, drive_value, drives_build, drives_begin_step, drives_impose_end, drives_add_work
 
   type :: drive_t
     integer :: body = 0, dof = 0         !< body (rigid) or mesh node, and its dof
@@ -119,4 +119,20 @@ contains
       if (drives(k)%is_velocity) v(drives(k)%dof, drives(k)%body) = drive_value(drives(k), t + h)
     end do
   end subroutine drives_impose_end
+
+  !> Work of the force drives over the step [t, t+h] (theta rule on the
+  !> displacement of their dofs), added to work.
+  pure subroutine drives_add_work(drives, t, h, theta, vbegin, v, work)
+    type(drive_t), intent(in) :: drives(:)
+    real(wp), intent(in) :: t, h, theta, vbegin(:, :), v(:, :)
+    real(wp), intent(inout) :: work
+    integer :: k
+    do k = 1, size(drives)
+      associate (d => drives(k))
+        if (d%is_velocity) cycle
+        work = work + h * ((1.0_wp - theta) * vbegin(d%dof, d%body) + theta * v(d%dof, d%body)) * &
+               ((1.0_wp - theta) * drive_value(d, t) + theta * drive_value(d, t + h))
+      end associate
+    end do
+  end subroutine drives_add_work
 end module fracas_drives

@@ -20,12 +20,12 @@
 module fracas_rbdy3
   use fracas_kinds, only: wp
   use fracas_deck, only: driven_dof_input_t
-  use fracas_drives, only: drive_t, drives_build, drives_begin_step, drives_impose_end
+  use fracas_drives, only: drive_t, drives_build, drives_begin_step, drives_impose_end, drives_add_work
   use fracas_frame_3d, only: cross3, rotation_of_vector
   implicit none
   private
   public :: rbdy3_t, rbdy3_init, rbdy3_add_drives, rbdy3_begin_step, rbdy3_detection_config, rbdy3_end_step, &
-            rbdy3_kinetic_energy, rbdy3_angular_momentum, gyroscopic_torque
+            rbdy3_kinetic_energy, rbdy3_angular_momentum, gyroscopic_torque, rbdy3_add_step_work
 
   type :: rbdy3_t
     integer :: n = 0
@@ -136,6 +136,23 @@ contains
     b%vbegin = b%v
     b%frame_begin = b%frame
   end subroutine rbdy3_end_step
+
+  !> Work of gravity on the free translations and of the force drives over the
+  !> step [t, t+h] (theta rule on the displacement; a torque drive with the
+  !> body-frame rotation increment), added to work_gravity and work_forces;
+  !> before rbdy3_end_step (it reads vbegin and v).
+  pure subroutine rbdy3_add_step_work(b, t, h, theta, work_gravity, work_forces)
+    type(rbdy3_t), intent(in) :: b
+    real(wp), intent(in) :: t, h, theta
+    real(wp), intent(inout) :: work_gravity, work_forces
+    integer :: k
+    do k = 1, b%n
+      work_gravity = work_gravity + h * sum(b%mass(1:3, k) * b%gravity * &
+                                            ((1.0_wp - theta) * b%vbegin(1:3, k) + theta * b%v(1:3, k)), &
+                                            mask=.not. b%driven(1:3, k))
+    end do
+    call drives_add_work(b%drives, t, h, theta, b%vbegin, b%v, work_forces)
+  end subroutine rbdy3_add_step_work
 
   !> Kinetic energy of the free (not velocity-driven) dofs.
   pure real(wp) function rbdy3_kinetic_energy(b) result(e)

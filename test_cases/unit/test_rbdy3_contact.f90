@@ -15,7 +15,10 @@
 !>    friction 2/7 m g sin alpha, and the rolling condition holds (the scheme
 !>    holds them exactly per step: 1e-9 relative); slipping (alpha = 30 deg,
 !>    mu = 0.1 < 2/7 tan alpha = 0.165) a = g (sin alpha - mu cos alpha) and
-!>    the angular acceleration 5 mu g cos alpha / (2 R);
+!>    the angular acceleration 5 mu g cos alpha / (2 R); energy audit of the
+!>    rolling (rbdy3_add_step_work): kinetic energy gained = work of gravity
+!>    (1e-9 relative: the end velocity of the contact point is 0, so is the
+!>    theta-rule work of the contact impulses);
 !> 5. a cube (POLYR) face down on the PLANx, PRPLx's 4 points, Gauss-Seidel
 !>    over them in the test (until the impulses move < 1e-15 m g h): at rest
 !>    the normal forces sum to m g (1e-10 relative, hyperstatic: only the sum
@@ -26,13 +29,14 @@
 !> (checks 1 and 2, 10 failures; the rolling is blind to it: a sphere's frame
 !> is the identity); the Delassus block without its rotational part (checks 2
 !> and 4: a = 2.388 for 2.397, friction 48.3 N for 10.04 N); PRPLx's gap with
-!> + a3 (check 5: no contact found).
+!> + a3 (check 5: no contact found); the work of gravity with the end velocity
+!> alone (energy audit: 6.7533 for 6.7365).
 program test_rbdy3_contact
   use fracas_kinds, only: wp
   use fracas_testing, only: check_close, check_true, test_finish
   use fracas_deck, only: driven_dof_input_t
   use fracas_rbdy3, only: rbdy3_t, rbdy3_init, rbdy3_add_drives, rbdy3_begin_step, rbdy3_detection_config, &
-                          rbdy3_end_step
+                          rbdy3_end_step, rbdy3_add_step_work, rbdy3_kinetic_energy
   use fracas_rbdy3_side, only: rigid3_levers, rigid3_add_delassus, rigid3_add_velocity, rigid3_pair_velocity, &
                                rigid3_pair_impulse
   use fracas_contactors_3d, only: tactor3_t, tk3_spher, tk3_planx, body3_mass_properties, box_surface, &
@@ -100,7 +104,7 @@ contains
     type(driven_dof_input_t) :: hold(6)
     real(wp) :: cs(3), fs(3, 3), ms, is(3), cp(3), fp(3, 3), mp, ip(3), avrd, q(3, 2), ftt(3, 3, 2), vert(3, 8)
     real(wp) :: gap(4), pt(3, 4), cf(3, 3), lever(18, 4), w(9, 4), rl(3, 4), rnew(3), uf(3), rsum(3), down(3), t, a, aref
-    real(wp) :: omega_dot, dmax
+    real(wp) :: omega_dot, dmax, wg, wf, ke0
     integer :: faces(3, 12), iv(4), i, k, j, np, it, st
     logical :: found, cube
     cube = shape == 'cube'
@@ -131,6 +135,8 @@ contains
     rl = 0.0_wp
     t = 0.0_wp
     found = .true.
+    wg = 0.0_wp; wf = 0.0_wp
+    ke0 = rbdy3_kinetic_energy(b)
     do k = 1, nstep
       call rbdy3_begin_step(b, t, h, theta)
       call rbdy3_detection_config(b, h, theta, q, ftt)
@@ -166,6 +172,7 @@ contains
         end do
         if (dmax <= 1.0e-15_wp * ms * grav * h) exit
       end do
+      call rbdy3_add_step_work(b, t, h, theta, wg, wf)
       call rbdy3_end_step(b, h, theta)
       t = k * h
     end do
@@ -199,6 +206,8 @@ contains
       call check_close(name//': friction = 2/7 m g sin alpha', norm2(rsum(1:2)), 2.0_wp / 7.0_wp * ms * grav * sin(alpha), &
                        1.0e-9_wp * ms * grav)
       call check_close(name//': rolling, omega R = v', omega_dot * radius, a, 1.0e-9_wp * aref)
+      call check_close(name//': energy audit, kinetic energy gained = work of gravity (rolling dissipates nothing)', &
+                       rbdy3_kinetic_energy(b) - ke0, wg, 1.0e-9_wp * wg)
     else
       aref = grav * (sin(alpha) - mu * cos(alpha))
       call check_close(name//': a = g (sin alpha - mu cos alpha)', a, aref, 1.0e-9_wp * aref)
