@@ -20,12 +20,14 @@
 module fracas_rbdy3
   use fracas_kinds, only: wp
   use fracas_deck, only: driven_dof_input_t
+  use fracas_deck_3d, only: dof3_record_t
   use fracas_drives, only: drive_t, drives_build, drives_begin_step, drives_impose_end, drives_add_work
   use fracas_frame_3d, only: cross3, rotation_of_vector
   implicit none
   private
   public :: rbdy3_t, rbdy3_init, rbdy3_add_drives, rbdy3_begin_step, rbdy3_detection_config, rbdy3_end_step, &
-            rbdy3_kinetic_energy, rbdy3_angular_momentum, gyroscopic_torque, rbdy3_add_step_work
+            rbdy3_kinetic_energy, rbdy3_angular_momentum, gyroscopic_torque, rbdy3_add_step_work, &
+            rbdy3_dof_records, rbdy3_set_dof
 
   type :: rbdy3_t
     integer :: n = 0
@@ -153,6 +155,33 @@ contains
     end do
     call drives_add_work(b%drives, t, h, theta, b%vbegin, b%v, work_forces)
   end subroutine rbdy3_add_step_work
+
+  !> The bodies' state as DOF.OUT records: X(1:3) the displacement of the
+  !> centre, X(4:6) = 0 (as LMGC90: the rotation is the frame), V, the frame.
+  pure function rbdy3_dof_records(b) result(r)
+    type(rbdy3_t), intent(in) :: b
+    type(dof3_record_t) :: r(b%n)
+    integer :: k
+    do k = 1, b%n
+      r(k)%body = b%number(k)
+      r(k)%x = [b%x(:, k), 0.0_wp, 0.0_wp, 0.0_wp]
+      r(k)%v = b%v(:, k)
+      r(k)%frame = b%frame(:, :, k)
+    end do
+  end function rbdy3_dof_records
+
+  !> Start from a DOF.INI record (body index = its number): displacement,
+  !> velocity and frame, as begin and end state.
+  pure subroutine rbdy3_set_dof(b, r)
+    type(rbdy3_t), intent(inout) :: b
+    type(dof3_record_t), intent(in) :: r
+    b%x(:, r%body) = r%x(1:3)
+    b%xbegin(:, r%body) = r%x(1:3)
+    b%v(:, r%body) = r%v
+    b%vbegin(:, r%body) = r%v
+    b%frame(:, :, r%body) = r%frame
+    b%frame_begin(:, :, r%body) = r%frame
+  end subroutine rbdy3_set_dof
 
   !> Kinetic energy of the free (not velocity-driven) dofs.
   pure real(wp) function rbdy3_kinetic_energy(b) result(e)

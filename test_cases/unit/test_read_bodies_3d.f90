@@ -10,7 +10,10 @@
 !> where read values are compared: 1e-7).
 !> Planted bugs watched red: the NO6xx second line read into coo1..3 (centre
 !> z 0 for 0.15); the 'I1' line test at columns 31-32 (line taken as a
-!> contactor: error); the DOF.INI V lines swapped (omega_2 0 for 5).
+!> contactor: error); the DOF.INI V lines swapped (omega_2 0 for 5); the frame
+!> written by rows (a(1..3) = the first row: read back off by 1.0).
+!> Also one step, then DOF.OUT in LMGC90's 3D layout (fracas_write_outbox:
+!> write_dof_file_3d) read back with read_dof_3d (8 digits).
 program test_read_bodies_3d
   use fracas_kinds, only: wp
   use fracas_testing, only: check_close, check_true, test_finish
@@ -20,7 +23,10 @@ program test_read_bodies_3d
   use fracas_read_bulk_behav, only: read_bulk_behav
   use fracas_read_drv_dof, only: read_drv_dof
   use fracas_contactors_3d, only: tactor3_t, tactors3_from_input, body3_mass_properties
-  use fracas_rbdy3, only: rbdy3_t, rbdy3_init, rbdy3_add_drives, rbdy3_begin_step
+  use fracas_rbdy3, only: rbdy3_t, rbdy3_init, rbdy3_add_drives, rbdy3_begin_step, rbdy3_end_step, rbdy3_set_dof, &
+                          rbdy3_dof_records
+  use fracas_write_outbox, only: write_dof_file_3d
+  use fracas_files, only: executable_dir
   use fracas_frame_3d, only: rotation_of_vector
   implicit none
   character(len=*), parameter :: dir = '../broken/rbdy3_deck_refused/DATBOX'
@@ -28,7 +34,7 @@ program test_read_bodies_3d
   type(body3_input_t), allocatable :: bodies(:)
   type(material_input_t), allocatable :: materials(:)
   type(driven_dof_input_t), allocatable :: driven(:)
-  type(dof3_record_t), allocatable :: dofs(:)
+  type(dof3_record_t), allocatable :: dofs(:), back(:), written(:)
   type(tactor3_t), allocatable :: t(:)
   type(rbdy3_t) :: b
   real(wp) :: gravity(3), centre(3, 4), frame(3, 3, 4), mass(4), inertia(3, 4), avrd(4), m1, i1, time
@@ -83,10 +89,24 @@ program test_read_bodies_3d
   call check_close('DOF.INI: V(1)', dofs(1)%v(1), 0.5_wp, 1.0e-15_wp)
   call check_close('DOF.INI: V(5) (omega about the second principal axis)', dofs(1)%v(5), 5.0_wp, 1.0e-15_wp)
   call check_close('DOF.INI: frame gamma(3)', dofs(1)%frame(3, 3), 1.0_wp, 1.0e-15_wp)
-  b%vbegin(:, 1) = dofs(1)%v
+  call rbdy3_set_dof(b, dofs(1))
   call rbdy3_begin_step(b, 0.0_wp, 1.0e-3_wp, 0.5_wp)
   call check_close('drive: plate omega_3 = 2 (ct)', b%v(6, 3), 2.0_wp, 0.0_wp)
   call check_close('free fall: sphere v_z = -g h', b%vfree(3, 1), -9.81e-3_wp, 1.0e-15_wp)
   call check_close('sphere spin kept (no gyroscopic torque on a sphere)', b%vfree(5, 1), 5.0_wp, 0.0_wp)
+  ! One step, DOF.OUT written in LMGC90's 3D layout and read back (D14.7: 8 digits).
+  call rbdy3_end_step(b, 1.0e-3_wp, 0.5_wp)
+  written = rbdy3_dof_records(b)
+  call write_dof_file_3d(executable_dir()//'test_read_bodies_3d_DOF.OUT', 1, 1.0e-3_wp, written)
+  call read_dof_3d(executable_dir()//'test_read_bodies_3d_DOF.OUT', 4, step, time, back)
+  call check_true('DOF.OUT 3D read back: step 1, 4 bodies', step == 1 .and. size(back) == 4 .and. all(back%body == [1, 2, 3, 4]))
+  call check_close('DOF.OUT 3D read back: time', time, 1.0e-3_wp, 1.0e-10_wp)
+  do k = 1, 4
+    call check_close('DOF.OUT 3D read back: X, V (8 digits)', maxval(abs([back(k)%x - written(k)%x, back(k)%v - written(k)%v])), &
+                     0.0_wp, 5.0e-8_wp * max(1.0_wp, maxval(abs(written(k)%v))))
+    call check_close('DOF.OUT 3D read back: frame (8 digits)', maxval(abs(back(k)%frame - written(k)%frame)), 0.0_wp, 5.0e-8_wp)
+  end do
+  call check_close('sphere after one step: z = 0.15 - g h^2 / 2', b%ref(3, 1) + written(1)%x(3), 0.15_wp - 0.5_wp * 9.81e-6_wp, &
+                   1.0e-15_wp)
   call test_finish()
 end program test_read_bodies_3d
