@@ -1,7 +1,7 @@
 !> 3D contactors and pairs: mass properties (fracas_contactors_3d) against the
 !> textbook formulas, the principal frame of a two-sphere body, the symmetric
-!> 3x3 eigen-decomposition, and the SPSPx / SPPLx gap, point and frame against
-!> hand computations. References in each check's name or comment; tolerances
+!> 3x3 eigen-decomposition, POLYR volume and inertia, and the SPSPx, SPPLx,
+!> PRPLx and SPPRx gap, point and frame against hand computations. References in each check's name or comment; tolerances
 !> are round-off (1e-12 relative) except where stated.
 !> Planted bugs watched red: the parallel-axis term with + vi d d^T (4 checks:
 !> the moment about the line of centres 1.78e-2 for 1.07e-3, the axis across);
@@ -9,7 +9,9 @@
 !> SPSPx's point on the candidate's surface (0.05 off); the polyhedron's second
 !> moments not moved to the centroid (pyramid Ixx 2.24 for 2.15: the tetrahedron and
 !> the box are blind to it, their vertex mean being their centroid); PRPLx
-!> keeping the first 4 vertices met (upside-down cube).
+!> keeping the first 4 vertices met (upside-down cube); SPPRx's triangle edge
+!> regions projected to a vertex (edge gap 0.507 for 0.3), its inside point
+!> moved the wrong way (0.2 off).
 program test_contactors_3d
   use fracas_kinds, only: wp
   use fracas_testing, only: check_close, check_true, test_finish
@@ -17,6 +19,7 @@ program test_contactors_3d
                                   polyr_from_surface, box_surface, polyr_vertices
   use fracas_frame_3d, only: polyhedron_volume_inertia
   use fracas_prplx, only: prplx_contacts
+  use fracas_spprx, only: spprx_geometry
   use fracas_frame_3d, only: symmetric_eigen_3x3, cross3, rotation_of_vector, identity3
   use fracas_spspx, only: spspx_geometry
   use fracas_spplx, only: spplx_geometry
@@ -30,6 +33,7 @@ program test_contactors_3d
   call sppl()
   call polyr()
   call prpl()
+  call sppr()
   call test_finish()
 
 contains
@@ -248,6 +252,51 @@ contains
                         2.0_wp, npt, iv, gap, pt, f)
     call check_true('PRPLx upside down, alert 2: the 4 deepest (5-8) kept', npt == 4 .and. all(iv >= 5))
   end subroutine prpl
+
+  !> SPPRx: a cube of half side 0.5 turned by R and moved by d, sphere r = 0.2
+  !> (in the cube's axes): over the top face at 0.65 (gap -0.05, n = R e3, point
+  !> on the face); off an edge at (0.8, 0, 0.9) (closest (0.5, 0, 0.5),
+  !> distance 0.5, gap 0.3, n = R (0.6, 0, 0.8)); off a corner at 0.5 + 0.1
+  !> (gap 0.1 sqrt 3 - 0.2); inside at (0, 0, 0.4) (nearest face the top:
+  !> gap -0.1 - 0.2, point (0, 0, 0.5)); far (alert 0.1 < gap 0.3): not found.
+  subroutine sppr()
+    real(wp) :: vert(3, 8), r(3, 3), d(3), gap, pt(3), f(3, 3)
+    integer :: faces(3, 12), k
+    logical :: found
+    call box_surface([0.5_wp, 0.5_wp, 0.5_wp], vert, faces)
+    r = rotation_of_vector([0.2_wp, -0.5_wp, 0.3_wp])
+    d = [1.0_wp, 2.0_wp, 3.0_wp]
+    do k = 1, 8
+      vert(:, k) = d + matmul(r, vert(:, k))
+    end do
+    call spprx_geometry(cube_point(d, r, [0.1_wp, -0.2_wp, 0.65_wp]), 0.2_wp, vert, faces, 0.01_wp, found, gap, pt, f)
+    call check_true('SPPRx face: found', found)
+    call check_close('SPPRx face: gap', gap, -0.05_wp, 1.0e-14_wp)
+    call check_close('SPPRx face: normal R e3', norm2(f(:, 3) - r(:, 3)), 0.0_wp, 1.0e-14_wp)
+    call check_close('SPPRx face: point on the face', norm2(pt - cube_point(d, r, [0.1_wp, -0.2_wp, 0.5_wp])), 0.0_wp, 1.0e-14_wp)
+    call check_frame('SPPRx face', f)
+    call spprx_geometry(cube_point(d, r, [0.8_wp, 0.0_wp, 0.9_wp]), 0.2_wp, vert, faces, 0.5_wp, found, gap, pt, f)
+    call check_close('SPPRx edge: gap', gap, 0.3_wp, 1.0e-14_wp)
+    call check_close('SPPRx edge: normal R (0.6, 0, 0.8)', norm2(f(:, 3) - matmul(r, [0.6_wp, 0.0_wp, 0.8_wp])), 0.0_wp, &
+                     1.0e-14_wp)
+    call check_close('SPPRx edge: point on the edge', norm2(pt - cube_point(d, r, [0.5_wp, 0.0_wp, 0.5_wp])), 0.0_wp, 1.0e-14_wp)
+    call spprx_geometry(cube_point(d, r, [0.6_wp, 0.6_wp, 0.6_wp]), 0.2_wp, vert, faces, 0.5_wp, found, gap, pt, f)
+    call check_close('SPPRx corner: gap 0.1 sqrt 3 - 0.2', gap, 0.1_wp * sqrt(3.0_wp) - 0.2_wp, 1.0e-14_wp)
+    call check_close('SPPRx corner: point at the corner', norm2(pt - cube_point(d, r, [0.5_wp, 0.5_wp, 0.5_wp])), 0.0_wp, 1.0e-14_wp)
+    call spprx_geometry(cube_point(d, r, [0.0_wp, 0.0_wp, 0.4_wp]), 0.2_wp, vert, faces, 0.01_wp, found, gap, pt, f)
+    call check_close('SPPRx inside: gap -0.1 - r', gap, -0.3_wp, 1.0e-14_wp)
+    call check_close('SPPRx inside: normal R e3', norm2(f(:, 3) - r(:, 3)), 0.0_wp, 1.0e-14_wp)
+    call check_close('SPPRx inside: point on the top face', norm2(pt - cube_point(d, r, [0.0_wp, 0.0_wp, 0.5_wp])), 0.0_wp, 1.0e-14_wp)
+    call spprx_geometry(cube_point(d, r, [0.8_wp, 0.0_wp, 0.9_wp]), 0.2_wp, vert, faces, 0.1_wp, found, gap, pt, f)
+    call check_true('SPPRx edge beyond the alert: not found', .not. found)
+  end subroutine sppr
+
+  !> A point given in the cube's axes (turned by r, moved by d), in global coordinates.
+  pure function cube_point(d, r, x) result(y)
+    real(wp), intent(in) :: d(3), r(3, 3), x(3)
+    real(wp) :: y(3)
+    y = d + matmul(r, x)
+  end function cube_point
 
   !> Columns t1, t2, n orthonormal and right-handed.
   subroutine check_frame(name, f)
