@@ -1,7 +1,7 @@
 !> 3D contactors and pairs: mass properties (fracas_contactors_3d) against the
 !> textbook formulas, the principal frame of a two-sphere body, the symmetric
 !> 3x3 eigen-decomposition, POLYR volume and inertia, and the SPSPx, SPPLx,
-!> PRPLx and SPPRx gap, point and frame against hand computations. References in each check's name or comment; tolerances
+!> PRPLx, SPPRx and PRPRx gap, point and frame against hand computations. References in each check's name or comment; tolerances
 !> are round-off (1e-12 relative) except where stated.
 !> Planted bugs watched red: the parallel-axis term with + vi d d^T (4 checks:
 !> the moment about the line of centres 1.78e-2 for 1.07e-3, the axis across);
@@ -11,7 +11,9 @@
 !> the box are blind to it, their vertex mean being their centroid); PRPLx
 !> keeping the first 4 vertices met (upside-down cube); SPPRx's triangle edge
 !> regions projected to a vertex (edge gap 0.507 for 0.3), its inside point
-!> moved the wrong way (0.2 off).
+!> moved the wrong way (0.2 off); PRPRx's clipping sides outward (12 checks:
+!> no face point kept); PRPRx taking the first edge pair along the best axis,
+!> not the supporting one (edge-edge point 0.85 off).
 program test_contactors_3d
   use fracas_kinds, only: wp
   use fracas_testing, only: check_close, check_true, test_finish
@@ -20,6 +22,7 @@ program test_contactors_3d
   use fracas_frame_3d, only: polyhedron_volume_inertia
   use fracas_prplx, only: prplx_contacts
   use fracas_spprx, only: spprx_geometry
+  use fracas_prprx, only: prprx_contacts
   use fracas_frame_3d, only: symmetric_eigen_3x3, cross3, rotation_of_vector, identity3
   use fracas_spspx, only: spspx_geometry
   use fracas_spplx, only: spplx_geometry
@@ -34,6 +37,7 @@ program test_contactors_3d
   call polyr()
   call prpl()
   call sppr()
+  call prpr()
   call test_finish()
 
 contains
@@ -290,6 +294,59 @@ contains
     call spprx_geometry(cube_point(d, r, [0.8_wp, 0.0_wp, 0.9_wp]), 0.2_wp, vert, faces, 0.1_wp, found, gap, pt, f)
     call check_true('SPPRx edge beyond the alert: not found', .not. found)
   end subroutine sppr
+
+  !> PRPRx with two cubes of half side 0.5, antagonist B at the origin:
+  !> A above at (0.3, 0.2, 1.01): face contact on B's top face, 4 points at the
+  !> corners of [-0.2, 0.5] x [-0.3, 0.5] at z = 0.51 (on A's face), gaps
+  !> 0.01, n = +z; A also turned 45 deg about z: the octagon reduced to 4
+  !> points, gaps 0.01, within both squares; B turned 45 deg about y and A
+  !> 45 deg about x at height sqrt 2 + 0.02: edge on edge, one point at
+  !> (0, 0, sqrt 2 / 2 + 0.01), gap 0.02, n = +z; A on its corner (its
+  !> diagonal vertical) 0.01 above B's top face: one point, the corner; apart
+  !> by 0.5 with the alert 0.1: none.
+  subroutine prpr()
+    real(wp) :: vb(3, 8), va(3, 8), base(3, 8), gap(4), pt(3, 4), f(3, 3), ra(3, 3), rb(3, 3), h
+    integer :: faces(3, 12), npt
+    call box_surface([0.5_wp, 0.5_wp, 0.5_wp], base, faces)
+    vb = base
+    va = base + spread([0.3_wp, 0.2_wp, 1.01_wp], 2, 8)
+    call prprx_contacts(va, faces, vb, faces, 0.05_wp, npt, gap, pt, f)
+    call check_true('PRPRx face: 4 points', npt == 4)
+    call check_close('PRPRx face: gaps 0.01', maxval(abs(gap - 0.01_wp)), 0.0_wp, 1.0e-14_wp)
+    call check_close('PRPRx face: normal +z', norm2(f(:, 3) - [0.0_wp, 0.0_wp, 1.0_wp]), 0.0_wp, 1.0e-15_wp)
+    call check_close('PRPRx face: the corners, sum of x', sum(pt(1, :)), 0.6_wp, 1.0e-14_wp)
+    call check_close('PRPRx face: the corners, sum of y', sum(pt(2, :)), 0.4_wp, 1.0e-14_wp)
+    call check_close('PRPRx face: on the incident face z = 0.51', maxval(abs(pt(3, :) - 0.51_wp)), 0.0_wp, 1.0e-14_wp)
+    call check_frame('PRPRx face', f)
+    ra = rotation_of_vector([0.0_wp, 0.0_wp, pi / 4.0_wp])
+    va = matmul(ra, base) + spread([0.0_wp, 0.0_wp, 1.01_wp], 2, 8)
+    call prprx_contacts(va, faces, vb, faces, 0.05_wp, npt, gap, pt, f)
+    call check_true('PRPRx octagon: 4 points kept', npt == 4)
+    call check_close('PRPRx octagon: gaps 0.01', maxval(abs(gap - 0.01_wp)), 0.0_wp, 1.0e-14_wp)
+    call check_true('PRPRx octagon: points within both squares', all(abs(pt(1:2, :)) <= 0.5_wp + 1.0e-14_wp) .and. &
+                    all(abs(matmul(transpose(ra(1:2, 1:2)), pt(1:2, :))) <= 0.5_wp + 1.0e-14_wp))
+    rb = rotation_of_vector([0.0_wp, pi / 4.0_wp, 0.0_wp])
+    ra = rotation_of_vector([pi / 4.0_wp, 0.0_wp, 0.0_wp])
+    vb = matmul(rb, base)
+    va = matmul(ra, base) + spread([0.0_wp, 0.0_wp, sqrt(2.0_wp) + 0.02_wp], 2, 8)
+    call prprx_contacts(va, faces, vb, faces, 0.05_wp, npt, gap, pt, f)
+    call check_true('PRPRx edge-edge: 1 point', npt == 1)
+    call check_close('PRPRx edge-edge: gap 0.02', gap(1), 0.02_wp, 1.0e-14_wp)
+    call check_close('PRPRx edge-edge: normal +z', norm2(f(:, 3) - [0.0_wp, 0.0_wp, 1.0_wp]), 0.0_wp, 1.0e-14_wp)
+    call check_close('PRPRx edge-edge: point between the edges', &
+                     norm2(pt(:, 1) - [0.0_wp, 0.0_wp, sqrt(0.5_wp) + 0.01_wp]), 0.0_wp, 1.0e-14_wp)
+    vb = base
+    ra = rotation_of_vector(acos(1.0_wp / sqrt(3.0_wp)) * [1.0_wp, -1.0_wp, 0.0_wp] / sqrt(2.0_wp))
+    h = 0.5_wp + sqrt(0.75_wp) + 0.01_wp
+    va = matmul(ra, base) + spread([0.0_wp, 0.0_wp, h], 2, 8)
+    call prprx_contacts(va, faces, vb, faces, 0.05_wp, npt, gap, pt, f)
+    call check_true('PRPRx corner: 1 point', npt == 1)
+    call check_close('PRPRx corner: gap 0.01', gap(1), 0.01_wp, 1.0e-14_wp)
+    call check_close('PRPRx corner: the corner', norm2(pt(:, 1) - [0.0_wp, 0.0_wp, h - sqrt(0.75_wp)]), 0.0_wp, 1.0e-14_wp)
+    va = base + spread([0.0_wp, 0.0_wp, 1.5_wp], 2, 8)
+    call prprx_contacts(va, faces, vb, faces, 0.1_wp, npt, gap, pt, f)
+    call check_true('PRPRx apart by 0.5, alert 0.1: none', npt == 0)
+  end subroutine prpr
 
   !> A point given in the cube's axes (turned by r, moved by d), in global coordinates.
   pure function cube_point(d, r, x) result(y)
