@@ -24,13 +24,18 @@
 !>    the normal forces sum to m g (1e-10 relative, hyperstatic: only the sum
 !>    is determined); on a 20 deg incline with mu = 0.5 > tan alpha it sticks
 !>    (a = 0, friction m g sin alpha), at 30 deg with mu = 0.3 it slides with
-!>    a = g (sin alpha - mu cos alpha) (1e-9 g) without turning.
+!>    a = g (sin alpha - mu cos alpha) (1e-9 g) without turning;
+!> 6. two cubes stacked on a PLANx (the upper one offset and turned): PRPLx
+!>    and PRPRx points, Gauss-Seidel: after 1 and 100 steps the plane carries
+!>    2 m g and the lower cube m g (1e-9 relative), nothing moves (1e-9 m/s).
 !> Planted bugs watched red: the levers as F (r x e_k) instead of F^T (r x e_k)
 !> (checks 1 and 2, 10 failures; the rolling is blind to it: a sphere's frame
 !> is the identity); the Delassus block without its rotational part (checks 2
 !> and 4: a = 2.388 for 2.397, friction 48.3 N for 10.04 N); PRPLx's gap with
 !> + a3 (check 5: no contact found); the work of gravity with the end velocity
-!> alone (energy audit: 6.7533 for 6.7365).
+!> alone (energy audit: 6.7533 for 6.7365); PRPRx's normal reversed when the
+!> reference face is the antagonist's (stack: the lower cube carries 0, the
+!> upper one falls).
 program test_rbdy3_contact
   use fracas_kinds, only: wp
   use fracas_testing, only: check_close, check_true, test_finish
@@ -43,10 +48,15 @@ program test_rbdy3_contact
                                   polyr_from_surface, polyr_vertices
   use fracas_spplx, only: spplx_geometry
   use fracas_prplx, only: prplx_contacts
+  use fracas_prprx, only: prprx_contacts
   use fracas_frame_3d, only: cross3, rotation_of_vector, local3_to_fclib
   use fracas_local_solver, only: coulomb_3d, inverse_block_3d
   implicit none
   real(wp), parameter :: pi = acos(-1.0_wp), grav = 9.81_wp, radius = 0.1_wp, rho = 2500.0_wp
+  ! the test's contact list (contacts_add, gauss_seidel): bodies (candidate,
+  ! antagonist), frame, gap, levers, Delassus block
+  integer :: cl_body(2, 16)
+  real(wp) :: cl_frame(3, 3, 16), cl_gap(16), cl_lever(18, 16), cl_w(9, 16)
 
   call h_and_delassus()
   call incline('sphere', 0.0_wp, 0.5_wp, 1, 'sphere at rest on a plane')
@@ -55,6 +65,8 @@ program test_rbdy3_contact
   call incline('cube', 0.0_wp, 0.5_wp, 1, 'cube at rest on a plane')
   call incline('cube', 20.0_wp * pi / 180.0_wp, 0.5_wp, 200, 'cube sticking')
   call incline('cube', 30.0_wp * pi / 180.0_wp, 0.3_wp, 200, 'cube sliding')
+  call stack(1)
+  call stack(100)
   call test_finish()
 
 contains
@@ -103,9 +115,9 @@ contains
     type(tactor3_t) :: ts(1), tp(1)
     type(driven_dof_input_t) :: hold(6)
     real(wp) :: cs(3), fs(3, 3), ms, is(3), cp(3), fp(3, 3), mp, ip(3), avrd, q(3, 2), ftt(3, 3, 2), vert(3, 8)
-    real(wp) :: gap(4), pt(3, 4), cf(3, 3), lever(18, 4), w(9, 4), rl(3, 4), rnew(3), uf(3), rsum(3), down(3), t, a, aref
-    real(wp) :: omega_dot, dmax, wg, wf, ke0
-    integer :: faces(3, 12), iv(4), i, k, j, np, it, st
+    real(wp) :: gap(4), pt(3, 4), cf(3, 3), rl(3, 8), rsum(3), down(3), t, a, aref
+    real(wp) :: omega_dot, wg, wf, ke0
+    integer :: faces(3, 12), iv(4), k, np, nc
     logical :: found, cube
     cube = shape == 'cube'
     tp(1)%kind = tk3_planx
@@ -149,36 +161,16 @@ contains
         np = merge(1, 0, found)
       end if
       if (np == 0) exit
-      do j = 1, np
-        lever(1:9, j) = rigid3_levers(pt(:, j) - q(:, 1), cf, ftt(:, :, 1))
-        lever(10:18, j) = rigid3_levers(pt(:, j) - q(:, 2), cf, ftt(:, :, 2))
-        w(:, j) = 0.0_wp
-        call rigid3_add_delassus(b%inv_mass(:, 1), cf, lever(1:9, j), w(:, j))
-        call rigid3_add_delassus(b%inv_mass(:, 2), cf, lever(10:18, j), w(:, j))
-        call rigid3_pair_impulse(b%v(:, 1), b%inv_mass(:, 1), b%v(:, 2), b%inv_mass(:, 2), cf, lever(:, j), rl(:, j))
-      end do
-      do it = 1, 10000       ! Gauss-Seidel from last step's impulses (same contacts: a flat face or one sphere)
-        dmax = 0.0_wp
-        do j = 1, np
-          uf = rigid3_pair_velocity(b%v(:, 1), b%v(:, 2), cf, lever(:, j)) - [(dot_product(w(3 * i - 2:3 * i, j), &
-                                                                                            rl(:, j)), i=1, 3)]
-          uf(3) = uf(3) + max(0.0_wp, gap(j)) / h
-          rnew = rl(:, j)
-          call solve(uf, w(:, j), mu, rnew, st)
-          call rigid3_pair_impulse(b%v(:, 1), b%inv_mass(:, 1), b%v(:, 2), b%inv_mass(:, 2), cf, lever(:, j), &
-                                   rnew - rl(:, j))
-          dmax = max(dmax, maxval(abs(rnew - rl(:, j))))
-          rl(:, j) = rnew
-        end do
-        if (dmax <= 1.0e-15_wp * ms * grav * h) exit
-      end do
+      nc = 0
+      call contacts_add(b, q, ftt, 1, 2, np, pt, cf, gap, nc)
+      call gauss_seidel(b, nc, h, mu, 1.0e-15_wp * ms * grav * h, rl)
       call rbdy3_add_step_work(b, t, h, theta, wg, wf)
       call rbdy3_end_step(b, h, theta)
       t = k * h
     end do
     call check_true(name//': in contact every step', found)
     if (.not. found) return
-    rsum = sum(rl(:, 1:max(np, 1)), dim=2) / h
+    rsum = sum(rl(:, 1:nc), dim=2) / h
     if (nstep == 1) then
       call check_close(name//': normal force = m g', rsum(3), ms * grav, 1.0e-10_wp * ms * grav)
       call check_close(name//': no friction', norm2(rsum(1:2)), 0.0_wp, 1.0e-10_wp * ms * grav)
@@ -218,6 +210,128 @@ contains
     end if
     write (*, '(a,a,2es24.16)') name, ': a, reference ', a, aref
   end subroutine incline
+
+  !> Two cubes (half side 0.1) stacked on a horizontal PLANx (held), the upper
+  !> one offset by (0.03, 0.02) and turned 0.3 rad about z; PRPLx (4 points)
+  !> and PRPRx (4 of the octagon-like overlap), Gauss-Seidel: after nstep
+  !> steps the plane carries 2 m g and the lower cube m g (1e-9 relative;
+  !> hyperstatic: only the sums are determined), nothing moves (1e-9 m/s).
+  subroutine stack(nstep)
+    integer, intent(in) :: nstep
+    real(wp), parameter :: h = 1.0e-3_wp, theta = 0.5_wp, half = 0.1_wp
+    type(rbdy3_t) :: b
+    type(tactor3_t) :: tc(1, 2), tp(1)
+    type(driven_dof_input_t) :: hold(6)
+    real(wp) :: vert(3, 8), c(3, 3), f(3, 3, 3), m(3), ii(3, 3), avrd, q(3, 3), ftt(3, 3, 3), gap(4), pt(3, 4), cf(3, 3)
+    real(wp) :: rl(3, 8), wplane, wcube
+    integer :: faces(3, 12), iv(4), k, np, nc, nplane
+    character(len=16) :: name
+    write (name, '(a,i0,a)') 'stack ', nstep, ' steps'
+    tp(1)%kind = tk3_planx
+    tp(1)%axes = [1.0_wp, 1.0_wp, 0.05_wp]
+    avrd = 0.0_wp
+    call body3_mass_properties(tp, [0.0_wp, 0.0_wp, -0.05_wp], rho, avrd, c(:, 3), f(:, :, 3), m(3), ii(:, 3))
+    call box_surface([half, half, half], vert, faces)
+    tc(1, 1) = polyr_from_surface(vert, faces)
+    tc(1, 2) = polyr_from_surface(matmul(rotation_of_vector([0.0_wp, 0.0_wp, 0.3_wp]), vert), faces)
+    do k = 1, 2
+      avrd = 0.0_wp
+      call body3_mass_properties(tc(:, k), [0.03_wp * (k - 1), 0.02_wp * (k - 1), half * (2 * k - 1)], rho, avrd, &
+                                 c(:, k), f(:, :, k), m(k), ii(:, k))
+    end do
+    call rbdy3_init(b, [1, 2, 3], c, f, m, ii, [half, half, 1.0_wp], [0.0_wp, 0.0_wp, -grav])
+    do k = 1, 6
+      hold(k)%kind = 'vlocy'
+      hold(k)%body = 3
+      hold(k)%dof = k
+    end do
+    call rbdy3_add_drives(b, hold)
+    rl = 0.0_wp
+    do k = 1, nstep
+      call rbdy3_begin_step(b, (k - 1) * h, h, theta)
+      call rbdy3_detection_config(b, h, theta, q, ftt)
+      nc = 0
+      call prplx_contacts(polyr_vertices(tc(1, 1), q(:, 1), ftt(:, :, 1)), q(:, 1), q(:, 3), ftt(:, :, 3), tp(1)%axes, &
+                          1.0e-3_wp, np, iv, gap, pt, cf)
+      call contacts_add(b, q, ftt, 1, 3, np, pt, cf, gap, nc)
+      nplane = nc
+      call prprx_contacts(polyr_vertices(tc(1, 2), q(:, 2), ftt(:, :, 2)), tc(1, 2)%faces, &
+                          polyr_vertices(tc(1, 1), q(:, 1), ftt(:, :, 1)), tc(1, 1)%faces, 1.0e-3_wp, np, gap, pt, cf)
+      call contacts_add(b, q, ftt, 2, 1, np, pt, cf, gap, nc)
+      call gauss_seidel(b, nc, h, 0.5_wp, 1.0e-15_wp * m(1) * grav * h, rl)
+      call rbdy3_end_step(b, h, theta)
+    end do
+    call check_true(trim(name)//': 4 points on the plane, 4 between the cubes', nplane == 4 .and. nc == 8)
+    wplane = sum(rl(3, 1:nplane)) / h
+    wcube = sum(rl(3, nplane + 1:nc)) / h
+    call check_close(trim(name)//': the plane carries 2 m g', wplane, 2.0_wp * m(1) * grav, 1.0e-9_wp * m(1) * grav)
+    call check_close(trim(name)//': the lower cube carries m g', wcube, m(2) * grav, 1.0e-9_wp * m(1) * grav)
+    call check_close(trim(name)//': nothing moves', maxval(abs(b%v(:, 1:2))), 0.0_wp, 1.0e-9_wp)
+  end subroutine stack
+
+  !> Add np contacts between bodies ib (candidate) and jb (antagonist) of b, at
+  !> the points pt with frame cf and gaps gap, to the test's contact list
+  !> (levers at the detection configuration q, ftt; Delassus blocks).
+  subroutine contacts_add(b, q, ftt, ib, jb, np, pt, cf, gap, nc)
+    type(rbdy3_t), intent(in) :: b
+    real(wp), intent(in) :: q(:, :), ftt(:, :, :), pt(:, :), cf(3, 3), gap(:)
+    integer, intent(in) :: ib, jb, np
+    integer, intent(inout) :: nc
+    integer :: j
+    do j = 1, np
+      nc = nc + 1
+      cl_body(:, nc) = [ib, jb]
+      cl_frame(:, :, nc) = cf
+      cl_gap(nc) = gap(j)
+      cl_lever(1:9, nc) = rigid3_levers(pt(:, j) - q(:, ib), cf, ftt(:, :, ib))
+      cl_lever(10:18, nc) = rigid3_levers(pt(:, j) - q(:, jb), cf, ftt(:, :, jb))
+      cl_w(:, nc) = 0.0_wp
+      call rigid3_add_delassus(b%inv_mass(:, ib), cf, cl_lever(1:9, nc), cl_w(:, nc))
+      call rigid3_add_delassus(b%inv_mass(:, jb), cf, cl_lever(10:18, nc), cl_w(:, nc))
+    end do
+  end subroutine contacts_add
+
+  !> Gauss-Seidel over the nc contacts of the list with the exact local solver
+  !> (IQS-like: Signorini on u_n + max(0, gap) / h), from the impulses rl
+  !> (injected first), until no impulse moves by more than tol.
+  subroutine gauss_seidel(b, nc, h, mu, tol, rl)
+    type(rbdy3_t), intent(inout) :: b
+    integer, intent(in) :: nc
+    real(wp), intent(in) :: h, mu, tol
+    real(wp), intent(inout) :: rl(:, :)
+    real(wp) :: uf(3), rnew(3), dmax
+    integer :: j, it, st, i
+    do j = 1, nc
+      call pair_impulse(b, j, rl(:, j))
+    end do
+    do it = 1, 100000
+      dmax = 0.0_wp
+      do j = 1, nc
+        associate (c => cl_body(:, j))
+          uf = rigid3_pair_velocity(b%v(:, c(1)), b%v(:, c(2)), cl_frame(:, :, j), cl_lever(:, j)) - &
+               [(dot_product(cl_w(3 * i - 2:3 * i, j), rl(:, j)), i=1, 3)]
+        end associate
+        uf(3) = uf(3) + max(0.0_wp, cl_gap(j)) / h
+        rnew = rl(:, j)
+        call solve(uf, cl_w(:, j), mu, rnew, st)
+        call pair_impulse(b, j, rnew - rl(:, j))
+        dmax = max(dmax, maxval(abs(rnew - rl(:, j))))
+        rl(:, j) = rnew
+      end do
+      if (dmax <= tol) exit
+    end do
+  end subroutine gauss_seidel
+
+  !> The bodies of contact j of the list += M^-1 H^T dr (candidate), -= (antagonist).
+  subroutine pair_impulse(b, j, dr)
+    type(rbdy3_t), intent(inout) :: b
+    integer, intent(in) :: j
+    real(wp), intent(in) :: dr(3)
+    associate (c => cl_body(:, j))
+      call rigid3_pair_impulse(b%v(:, c(1)), b%inv_mass(:, c(1)), b%v(:, c(2)), b%inv_mass(:, c(2)), &
+                               cl_frame(:, :, j), cl_lever(:, j), dr)
+    end associate
+  end subroutine pair_impulse
 
   !> One contact with the exact 3D local solver, which takes FCLib's order
   !> (n, t1, t2), the block column-major; the store's order is (t1, t2, n),
