@@ -22,7 +22,7 @@
 !> tangents_of_normal, the same for all points of the pair.
 module fracas_prprx
   use fracas_kinds, only: wp
-  use fracas_frame_3d, only: cross3, tangents_of_normal
+  use fracas_frame_3d, only: cross3, tangents_of_normal, sort_columns
   implicit none
   private
   public :: prprx_contacts, prprx_max_points
@@ -48,22 +48,9 @@ contains
     size_ab = max(maxval(maxval(va, dim=2) - minval(va, dim=2)), maxval(maxval(vb, dim=2) - minval(vb, dim=2)))
     best = -huge(1.0_wp)
     kind = 0; kbest = 0
-    ! face normals of B (reference on the antagonist: n from B to A)
-    do k = 1, size(fb, 2)
-      n = normal_of(vb, fb(:, k))
-      sep = minval(matmul(n, va)) - dot_product(n, vb(:, fb(1, k)))
-      if (sep > best) then
-        best = sep; kind = 2; kbest = k
-      end if
-    end do
-    ! face normals of A (reference on the candidate)
-    do k = 1, size(fa, 2)
-      n = normal_of(va, fa(:, k))
-      sep = minval(matmul(n, vb)) - dot_product(n, va(:, fa(1, k)))
-      if (sep > best) then
-        best = sep; kind = 1; kbest = k
-      end if
-    end do
+    ! face normals of B (reference on the antagonist: n from B to A), then of A
+    call best_face(vb, fb, va, 2, best, kind, kbest)
+    call best_face(va, fa, vb, 1, best, kind, kbest)
     ! edge-edge axes, oriented from B to A
     do k = 1, size(fa, 2)
       do i = 1, 3
@@ -174,6 +161,25 @@ contains
     end do
   end subroutine clip_faces
 
+  !> The face of polyhedron (v, f) along whose outward normal the other
+  !> polyhedron's vertices vo are the most separated, if more than best:
+  !> best, kind = this_kind and kbest updated.
+  pure subroutine best_face(v, f, vo, this_kind, best, kind, kbest)
+    real(wp), intent(in) :: v(:, :), vo(:, :)
+    integer, intent(in) :: f(:, :), this_kind
+    real(wp), intent(inout) :: best
+    integer, intent(inout) :: kind, kbest
+    real(wp) :: n(3), sep
+    integer :: k
+    do k = 1, size(f, 2)
+      n = normal_of(v, f(:, k))
+      sep = minval(matmul(n, vo)) - dot_product(n, v(:, f(1, k)))
+      if (sep > best) then
+        best = sep; kind = this_kind; kbest = k
+      end if
+    end do
+  end subroutine best_face
+
   pure real(wp) function min_dist(x, pts) result(d)
     real(wp), intent(in) :: x(3), pts(:, :)
     integer :: k
@@ -197,8 +203,8 @@ contains
     real(wp), intent(in) :: v(:, :), o(3), n(3)
     real(wp), intent(out) :: poly(3, max_face)
     integer, intent(out) :: np
-    real(wp) :: ext, c(3), t1(3), t2(3), ang(max_face), tmp(3), ta
-    integer :: k, j
+    real(wp) :: ext, c(3), t1(3), t2(3), ang(max_face)
+    integer :: k
     ext = maxval(maxval(v, dim=2) - minval(v, dim=2))
     np = 0
     do k = 1, size(v, 2)
@@ -212,15 +218,7 @@ contains
     do k = 1, np
       ang(k) = atan2(dot_product(poly(:, k) - c, t2), dot_product(poly(:, k) - c, t1))
     end do
-    do k = 2, np   ! insertion sort by angle
-      j = k
-      do while (j > 1)
-        if (ang(j - 1) <= ang(j)) exit
-        ta = ang(j); ang(j) = ang(j - 1); ang(j - 1) = ta
-        tmp = poly(:, j); poly(:, j) = poly(:, j - 1); poly(:, j - 1) = tmp
-        j = j - 1
-      end do
-    end do
+    call sort_columns(ang(1:np), poly(:, 1:np))
   end subroutine face_polygon
 
   !> Sutherland–Hodgman: the part of the polygon p(:, 1:np) on the side

@@ -7,7 +7,7 @@ module fracas_frame_3d
   use fracas_kinds, only: wp
   implicit none
   private
-  public :: cross3, identity3, rotation_of_vector, tangents_of_normal, symmetric_eigen_3x3, polyhedron_volume_inertia, &
+  public :: sort_columns, cross3, identity3, rotation_of_vector, tangents_of_normal, symmetric_eigen_3x3, polyhedron_volume_inertia, &
             local3_to_fclib
 
 contains
@@ -17,6 +17,22 @@ contains
     real(wp) :: c(3)
     c = [a(2) * b(3) - a(3) * b(2), a(3) * b(1) - a(1) * b(3), a(1) * b(2) - a(2) * b(1)]
   end function cross3
+
+  !> Sort key ascending (insertion sort: short lists), the columns of v along.
+  pure subroutine sort_columns(key, v)
+    real(wp), intent(inout) :: key(:), v(:, :)
+    real(wp) :: tk, tmp(size(v, 1))
+    integer :: i, j
+    do i = 2, size(key)
+      j = i
+      do while (j > 1)
+        if (key(j - 1) <= key(j)) exit
+        tk = key(j); key(j) = key(j - 1); key(j - 1) = tk
+        tmp = v(:, j); v(:, j) = v(:, j - 1); v(:, j - 1) = tmp
+        j = j - 1
+      end do
+    end do
+  end subroutine sort_columns
 
   pure function identity3() result(m)
     real(wp) :: m(3, 3)
@@ -86,8 +102,8 @@ contains
   pure subroutine symmetric_eigen_3x3(a, lam, v)
     real(wp), intent(in) :: a(3, 3)
     real(wp), intent(out) :: lam(3), v(3, 3)
-    real(wp) :: m(3, 3), theta, t, c, s, off, scale, tmp(3), tl
-    integer :: sweep, p, q, i, j, k
+    real(wp) :: m(3, 3), theta, t, c, s, off, scale, tmp(3)
+    integer :: sweep, p, q, i, k
     m = a
     v = 0.0_wp
     do i = 1, 3
@@ -123,16 +139,7 @@ contains
       end do
     end do
     lam = [m(1, 1), m(2, 2), m(3, 3)]
-    ! ascending order (insertion sort of 3), vectors along
-    do i = 2, 3
-      j = i
-      do while (j > 1)
-        if (lam(j - 1) <= lam(j)) exit
-        tl = lam(j); lam(j) = lam(j - 1); lam(j - 1) = tl
-        tmp = v(:, j); v(:, j) = v(:, j - 1); v(:, j - 1) = tmp
-        j = j - 1
-      end do
-    end do
+    call sort_columns(lam, v)
     if (dot_product(cross3(v(:, 1), v(:, 2)), v(:, 3)) < 0.0_wp) v(:, 3) = -v(:, 3)
   end subroutine symmetric_eigen_3x3
 

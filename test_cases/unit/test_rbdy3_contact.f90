@@ -113,7 +113,6 @@ contains
     real(wp), parameter :: h = 1.0e-3_wp, theta = 0.5_wp, half = 0.1_wp
     type(rbdy3_t) :: b
     type(tactor3_t) :: ts(1), tp(1)
-    type(driven_dof_input_t) :: hold(6)
     real(wp) :: cs(3), fs(3, 3), ms, is(3), cp(3), fp(3, 3), mp, ip(3), avrd, q(3, 2), ftt(3, 3, 2), vert(3, 8)
     real(wp) :: gap(4), pt(3, 4), cf(3, 3), rl(3, 8), rsum(3), down(3), t, a, aref
     real(wp) :: omega_dot, wg, wf, ke0
@@ -137,12 +136,7 @@ contains
     call body3_mass_properties(ts, cp + (0.05_wp + half) * fp(:, 3), rho, avrd, cs, fs, ms, is)
     call rbdy3_init(b, [1, 2], reshape([cs, cp], [3, 2]), reshape([fs, fp], [3, 3, 2]), [ms, mp], &
                     reshape([is, ip], [3, 2]), [avrd, 1.0_wp], [0.0_wp, 0.0_wp, -grav])
-    do k = 1, 6
-      hold(k)%kind = 'vlocy'
-      hold(k)%body = 2
-      hold(k)%dof = k
-    end do
-    call rbdy3_add_drives(b, hold)
+    call hold_body(b, 2)
     down = -fp(:, 2)
     rl = 0.0_wp
     t = 0.0_wp
@@ -221,7 +215,6 @@ contains
     real(wp), parameter :: h = 1.0e-3_wp, theta = 0.5_wp, half = 0.1_wp
     type(rbdy3_t) :: b
     type(tactor3_t) :: tc(1, 2), tp(1)
-    type(driven_dof_input_t) :: hold(6)
     real(wp) :: vert(3, 8), c(3, 3), f(3, 3, 3), m(3), ii(3, 3), avrd, q(3, 3), ftt(3, 3, 3), gap(4), pt(3, 4), cf(3, 3)
     real(wp) :: rl(3, 8), wplane, wcube
     integer :: faces(3, 12), iv(4), k, np, nc, nplane
@@ -240,12 +233,7 @@ contains
                                  c(:, k), f(:, :, k), m(k), ii(:, k))
     end do
     call rbdy3_init(b, [1, 2, 3], c, f, m, ii, [half, half, 1.0_wp], [0.0_wp, 0.0_wp, -grav])
-    do k = 1, 6
-      hold(k)%kind = 'vlocy'
-      hold(k)%body = 3
-      hold(k)%dof = k
-    end do
-    call rbdy3_add_drives(b, hold)
+    call hold_body(b, 3)
     rl = 0.0_wp
     do k = 1, nstep
       call rbdy3_begin_step(b, (k - 1) * h, h, theta)
@@ -268,6 +256,20 @@ contains
     call check_close(trim(name)//': the lower cube carries m g', wcube, m(2) * grav, 1.0e-9_wp * m(1) * grav)
     call check_close(trim(name)//': nothing moves', maxval(abs(b%v(:, 1:2))), 0.0_wp, 1.0e-9_wp)
   end subroutine stack
+
+  !> Every dof of body ib held at 0 (velocity drives, as DRV_DOF.DAT's).
+  subroutine hold_body(b, ib)
+    type(rbdy3_t), intent(inout) :: b
+    integer, intent(in) :: ib
+    type(driven_dof_input_t) :: hold(6)
+    integer :: k
+    do k = 1, 6
+      hold(k)%kind = 'vlocy'
+      hold(k)%body = ib
+      hold(k)%dof = k
+    end do
+    call rbdy3_add_drives(b, hold)
+  end subroutine hold_body
 
   !> Add np contacts between bodies ib (candidate) and jb (antagonist) of b, at
   !> the points pt with frame cf and gaps gap, to the test's contact list
