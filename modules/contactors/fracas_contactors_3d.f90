@@ -124,9 +124,14 @@ contains
   !> node: the node's coordinates; avrd: the PLAIN line's (0: computed, and
   !> returned). Out: centre, principal frame (columns), mass and principal
   !> inertia; the contactors' shift and frame turned into the principal frame.
-  pure subroutine body3_mass_properties(t, node, density, avrd, centre, frame, mass, inertia)
+  !> given: the PLAIN line's I1 I2 I3 (per unit density): for several
+  !> contactors, non-zero ones are kept with the global axes as frame (LMGC90
+  !> then expects the frame from DOF.INI); one contactor ignores them (LMGC90
+  !> takes the contactor's).
+  pure subroutine body3_mass_properties(t, node, density, avrd, centre, frame, mass, inertia, given)
     type(tactor3_t), intent(inout) :: t(:)
     real(wp), intent(in) :: node(3), density
+    real(wp), intent(in), optional :: given(3)
     real(wp), intent(inout) :: avrd
     real(wp), intent(out) :: centre(3), frame(3, 3), mass, inertia(3)
     real(wp) :: vol, vi, ii(3), og(3), tens(3, 3), d(3)
@@ -166,6 +171,12 @@ contains
       end do
       call symmetric_eigen_3x3(tens, inertia, frame)
       centre = node + og
+      if (present(given)) then
+        if (any(given /= 0.0_wp)) then
+          inertia = given
+          frame = identity3()
+        end if
+      end if
       do k = 1, size(t)
         t(k)%shift = matmul(t(k)%shift, frame)
         t(k)%frame = matmul(transpose(frame), t(k)%frame)

@@ -11,7 +11,10 @@
 !> Planted bugs watched red: the NO6xx second line read into coo1..3 (centre
 !> z 0 for 0.15); the 'I1' line test at columns 31-32 (line taken as a
 !> contactor: error); the DOF.INI V lines swapped (omega_2 0 for 5); the frame
-!> written by rows (a(1..3) = the first row: read back off by 1.0).
+!> written by rows (a(1..3) = the first row: read back off by 1.0); given
+!> I1 I2 I3 of a several-contactor body ignored (0.92 for 5).
+!> LMGC90's rule for given I1 I2 I3 on a several-contactor body's PLAIN line
+!> (kept, times the density, global axes) checked on the two-sphere body.
 !> Also one step, then DOF.OUT in LMGC90's 3D layout (fracas_write_outbox:
 !> write_dof_file_3d) read back with read_dof_3d (8 digits).
 program test_read_bodies_3d
@@ -27,7 +30,7 @@ program test_read_bodies_3d
                           rbdy3_dof_records
   use fracas_write_outbox, only: write_dof_file_3d
   use fracas_files, only: executable_dir
-  use fracas_frame_3d, only: rotation_of_vector
+  use fracas_frame_3d, only: rotation_of_vector, identity3
   implicit none
   character(len=*), parameter :: dir = '../broken/rbdy3_deck_refused/DATBOX'
   real(wp), parameter :: pi = acos(-1.0_wp), rho = 2500.0_wp
@@ -74,6 +77,18 @@ program test_read_bodies_3d
   call check_close('plate: frame = its localframe (30 deg about x, 8 digits)', &
                    maxval(abs(frame(:, :, 3) - rotation_of_vector([pi / 6.0_wp, 0.0_wp, 0.0_wp]))), 0.0_wp, 1.0e-7_wp)
   call check_close('plate: centre = node + offset', centre(3, 3), -0.05_wp, 1.0e-15_wp)
+  ! the two-sphere body with I1 I2 I3 given on its PLAIN line: kept (times the density), global axes
+  t = tactors3_from_input(bodies(2)%tactors)
+  avrd(2) = 0.0_wp
+  call body3_mass_properties(t, bodies(2)%coor(1:3), rho, avrd(2), centre(:, 2), frame(:, :, 2), mass(2), &
+                             inertia(:, 2), given=[1.0e-3_wp, 2.0e-3_wp, 3.0e-3_wp])
+  call check_close('two SPHEb, I given: I2 = rho 2e-3', inertia(2, 2), rho * 2.0e-3_wp, 1.0e-15_wp)
+  call check_close('two SPHEb, I given: global axes', maxval(abs(frame(:, :, 2) - identity3())), 0.0_wp, 0.0_wp)
+  call check_close('two SPHEb, I given: mass unchanged', mass(2), 2.0_wp * m1, 1.0e-12_wp * m1)
+  t = tactors3_from_input(bodies(2)%tactors)
+  call body3_mass_properties(t, bodies(2)%coor(1:3), rho, avrd(2), centre(:, 2), frame(:, :, 2), mass(2), inertia(:, 2), &
+                             given=bodies(2)%inertia)
+  call check_close('two SPHEb, I line zero: computed (I about x)', inertia(1, 2), 2.0_wp * i1, 1.0e-12_wp * i1)
   call check_close('POLYR cube: mass', mass(4), 20.0_wp, 1.0e-12_wp)
   call check_close('POLYR cube: I = m (a^2 + b^2) / 12', inertia(2, 4), 20.0_wp * 0.08_wp / 12.0_wp, 1.0e-13_wp)
   call check_close('POLYR cube: centre at its node', norm2(centre(:, 4) - [0.5_wp, 0.3_wp, 0.1_wp]), 0.0_wp, 1.0e-15_wp)
