@@ -5,9 +5,10 @@
 module fracas_drives
   use fracas_kinds, only: wp
   use fracas_deck, only: driven_dof_input_t
+  use fracas_errors, only: input_error
   implicit none
   private
-  public :: drive_t, drive_from_input, drive_value
+  public :: drive_t, drive_from_input, drive_value, drives_build, drives_begin_step, drives_impose_end, drives_add_work
 
   type :: drive_t
     integer :: body = 0, dof = 0         !< body (rigid) or mesh node, and its dof
@@ -60,4 +61,78 @@ contains
       val = (d%ct + d%amp * cos(d%omega * t + d%phi)) * min(1.0_wp, d%rampi + d%ramp * t)
     end if
   end function drive_value
+
+  ! The drives of a rigid body model whose dofs are arrays (ndof, nbodies)
+  ! (rbdy3; rbdy2 keeps its own loops until the body-model seam, issue 19).
+
+  !> All the drives of DRV_DOF.DAT (body serial number = index): velocity-driven
+  !> dofs marked, their inverse mass 0, a body with every dof driven clamped.
+  subroutine drives_build(inputs, driven, inv_mass, clamped, drives)
+    type(driven_dof_input_t), intent(in) :: inputs(:)
+    logical, intent(inout) :: driven(:, :), clamped(:)
+    real(wp), intent(inout) :: inv_mass(:, :)
+    type(drive_t), allocatable, intent(out) :: drives(:)
+    integer :: k
+    allocate (drives(size(inputs)))
+    do k = 1, size(inputs)
+      associate (inp => inputs(k), d => drives(k))
+        if (inp%body < 1 .or. inp%body > size(clamped)) &
+          call input_error(inp%src%file, inp%src%line, 9, 'driven body number out of range')
+        if (inp%dof < 1 .or. inp%dof > size(driven, 1)) &
+          call input_error(inp%src%file, inp%src%line, 9, 'dof index out of range')
+        d = drive_from_input(inp, inp%body)
+        if (d%is_velocity) then
+          driven(d%dof, d%body) = .true.
+          inv_mass(d%dof, d%body) = 0.0_wp
+          clamped(d%body) = all(driven(:, d%body))
+        end if
+      end associate
+    end do
+  end subroutine drives_build
+
+  !> Start of a step [t, t+h]: force drives theta-averaged into fext; a
+  !> velocity-driven dof starts at its value at t.
+  subroutine drives_begin_step(drives, t, h, theta, fext, vbegin)
+    type(drive_t), intent(in) :: drives(:)
+    real(wp), intent(in) :: t, h, theta
+    real(wp), intent(inout) :: fext(:, :), vbegin(:, :)
+    integer :: k
+    do k = 1, size(drives)
+      associate (d => drives(k))
+        if (d%is_velocity) then
+          vbegin(d%dof, d%body) = drive_value(d, t)
+        else
+          fext(d%dof, d%body) = fext(d%dof, d%body) + (1.0_wp - theta) * drive_value(d, t) + &
+                                theta * drive_value(d, t + h)
+        end if
+      end associate
+    end do
+  end subroutine drives_begin_step
+
+  !> A velocity-driven dof ends the step [t, t+h] at its value at t + h.
+  subroutine drives_impose_end(drives, t, h, v)
+    type(drive_t), intent(in) :: drives(:)
+    real(wp), intent(in) :: t, h
+    real(wp), intent(inout) :: v(:, :)
+    integer :: k
+    do k = 1, size(drives)
+      if (drives(k)%is_velocity) v(drives(k)%dof, drives(k)%body) = drive_value(drives(k), t + h)
+    end do
+  end subroutine drives_impose_end
+
+  !> Work of the force drives over the step [t, t+h] (theta rule on the
+  !> displacement of their dofs), added to work.
+  pure subroutine drives_add_work(drives, t, h, theta, vbegin, v, work)
+    type(drive_t), intent(in) :: drives(:)
+    real(wp), intent(in) :: t, h, theta, vbegin(:, :), v(:, :)
+    real(wp), intent(inout) :: work
+    integer :: k
+    do k = 1, size(drives)
+      associate (d => drives(k))
+        if (d%is_velocity) cycle
+        work = work + h * ((1.0_wp - theta) * vbegin(d%dof, d%body) + theta * v(d%dof, d%body)) * &
+               ((1.0_wp - theta) * drive_value(d, t) + theta * drive_value(d, t + h))
+      end associate
+    end do
+  end subroutine drives_add_work
 end module fracas_drives

@@ -17,7 +17,7 @@ module fracas_read_bodies
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, rtoa
   implicit none
   private
-  public :: read_bodies, material_list, body_lookup_t, body_lookup, find_body, no_such_body, element_node_count, &
+  public :: read_bodies, material_list, check_material_defined, body_lookup_t, body_lookup, find_body, no_such_body, element_node_count, &
             element_kinds
 
   character(len=*), parameter :: supported_tactors = 'DISKx, xKSID, JONCx, POLYG, DISKb'
@@ -77,6 +77,10 @@ contains
       case ('MAILx')
         n_mesh = n_mesh + 1
         call read_mesh_body(tf, i, bodies(ib), n_mesh, materials)
+      case ('RBDY3')
+        ! 3D rigid bodies are read by fracas_read_bodies_3d, but the scene is 2D (doc/rigid_3d.md)
+        call line_error(tf%lines(i + 1), 2, 'RBDY3 is a 3D rigid body: 3D decks are not run yet (the scene is 2D; ' &
+                        //'supported: RBDY2, MAILx)')
       case default
         call line_error(tf%lines(i + 1), 2, "unknown body model '"//model//"' (supported: RBDY2, MAILx)")
       end select
@@ -159,8 +163,6 @@ contains
     logical, intent(inout) :: have_bulk
     type(material_input_t), intent(in), optional :: materials(:)
     character(len=:), allocatable :: elem
-    integer :: k
-    logical :: found
 
     elem = get_word(ln, 2, 6, 'bulk element type')
     if (elem /= 'PLAIN') call line_error(ln, 2, "unknown bulk element '"//elem//"' for RBDY2 (supported: PLAIN)")
@@ -174,15 +176,18 @@ contains
     if (b%avrd < 0.0_wp) call line_error(ln, 35, 'avrd must be >= 0 (0: computed from the contactors), found '//rtoa(b%avrd))
     if (b%gyrd < 0.0_wp) call line_error(ln, 56, 'gyrd must be >= 0 (0: computed from the contactors), found '//rtoa(b%gyrd))
     call check_line_end(ln, 69, 'the PLAIN line')
-    if (present(materials)) then
-      found = .false.
-      do k = 1, size(materials)
-        if (materials(k)%nickname == b%behav) found = .true.
-      end do
-      if (.not. found) call line_error(ln, 23, "material '"//trim(b%behav)// &
-                                       "' is not defined in BULK_BEHAV.DAT (defined: "//material_list(materials)//')')
-    end if
+    if (present(materials)) call check_material_defined(ln, b%behav, materials)
   end subroutine read_bulk_line
+
+  !> A PLAIN line's material nickname (columns 23-27) must be one of MATERIALS.
+  subroutine check_material_defined(ln, behav, materials)
+    type(text_line_t), intent(in) :: ln
+    character(len=*), intent(in) :: behav
+    type(material_input_t), intent(in) :: materials(:)
+    if (any(materials%nickname == behav)) return
+    call line_error(ln, 23, "material '"//trim(behav)//"' is not defined in BULK_BEHAV.DAT (defined: "// &
+                    material_list(materials)//')')
+  end subroutine check_material_defined
 
   !> "STONE, TDURx" (or "none").
   function material_list(materials) result(s)

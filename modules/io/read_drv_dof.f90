@@ -64,8 +64,8 @@ contains
                                                       //"(' RBDY2  number' or ' MAILx  number')")
         associate (ln => tf%lines(i + 1))
           model = get_word(ln, 2, 6, 'body model')
-          if (model /= 'RBDY2' .and. model /= 'MAILx') &
-            call line_error(ln, 2, "unknown body model '"//trim(model)//"' (supported: RBDY2, MAILx)")
+          if (model /= 'RBDY2' .and. model /= 'MAILx' .and. model /= 'RBDY3') &
+            call line_error(ln, 2, "unknown body model '"//trim(model)//"' (supported: RBDY2, MAILx, RBDY3)")
           body = get_int(ln, 9, 15, 'body number')
           ib = 0
           if (present(bodies)) then
@@ -102,9 +102,10 @@ contains
           i = i + 2
         else
           if (is_data(tf, i + 1)) then
-            if (get_word(tf%lines(i + 1), 2, 6, 'node type') /= 'NO3xx') &
+            ! a rigid body's one node: NO3xx in 2D, NO6xx for RBDY3 (3D, fracas_read_bodies_3d)
+            if (get_word(tf%lines(i + 1), 2, 6, 'node type') /= merge('NO6xx', 'NO3xx', model == 'RBDY3')) &
               call line_error(tf%lines(i + 1), 2, "unknown node type '"//trim(field(tf%lines(i + 1), 2, 6))// &
-                              "' for RBDY2 (supported: NO3xx)")
+                              "' for "//model//" (supported: "//merge('NO6xx', 'NO3xx', model == 'RBDY3')//")")
             i = i + 1
           end if
           i = i + 1
@@ -176,6 +177,9 @@ contains
     if (model == 'MAILx') then
       if (d%dof < 1 .or. d%dof > 2) call line_error(ln, 9, 'dof index must be 1 or 2 for a MAILx node (x, y), found ' &
                                                     //itoa(d%dof))
+    else if (model == 'RBDY3') then
+      if (d%dof < 1 .or. d%dof > 6) call line_error(ln, 9, 'dof index must be 1..6 for RBDY3 (translations, ' &
+                                                    //'rotations about the principal axes), found '//itoa(d%dof))
     else
       if (d%dof < 1 .or. d%dof > 3) call line_error(ln, 9, 'dof index must be 1, 2 or 3 for RBDY2 (x, y, rotation), ' &
                                                     //'found '//itoa(d%dof))

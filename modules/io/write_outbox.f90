@@ -7,10 +7,11 @@ module fracas_write_outbox
   use fracas_errors, only: fatal
   use fracas_files, only: atomic_rename, close_written
   use fracas_deck, only: dof_record_t, contact_record_t, gpv_record_t
+  use fracas_deck_3d, only: dof3_record_t
   use fracas_read_vloc_rloc, only: vloc_layout_t, vloc_layout, internals_per_line
   implicit none
   private
-  public :: write_dof_file, write_vloc_rloc_file, write_gpv_file
+  public :: write_dof_file, write_vloc_rloc_file, write_gpv_file, write_dof_file_3d
 
   character(len=*), parameter :: rule = '!-----------------------------------------------------------------------'
   !> Names of the 2D cohesive internals (L, ut, un, beta, TPSini) in the comment
@@ -36,13 +37,7 @@ contains
     type(dof_record_t), intent(in) :: records(:)
     integer :: u, k, j
 
-    u = open_part(path)
-    write (u, '(a)') '     '
-    write (u, '(a)') '! DOF'
-    write (u, '(a)') '     '
-    write (u, fmt_steps) '$steps', step, 'time=', time
-    write (u, '(a)') ' '
-    write (u, '(a)') rule
+    u = open_dof(path, step, time)
     do k = 1, size(records)
       associate (r => records(k))
         if (r%model /= 'RBDY2') cycle
@@ -79,6 +74,55 @@ contains
     write (u, '(a)') rule
     call close_part(u, path)
   end subroutine write_dof_file
+
+  !> DOF.OUT.n of a 3D deck (RBDY3, as LMGC90's RBDY3 writes it): per body
+  !> the NO6xx lines X(1..3), X(4..6) (0: LMGC90 keeps the rotation as the
+  !> frame), V(1..3), V(4..6) (omega in the principal frame), then the frame's
+  !> axes on the lines a(1..3), b(1..3), g(1..3); a rule after the bodies and a
+  !> last one, as the 2D file.
+  subroutine write_dof_file_3d(path, step, time, records)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: step
+    real(wp), intent(in) :: time
+    type(dof3_record_t), intent(in) :: records(:)
+    integer :: u, k, i, j
+    character(len=5), parameter :: axis_label(3, 3) = reshape(['a(1)=', 'a(2)=', 'a(3)=', 'b(1)=', 'b(2)=', 'b(3)=', &
+                                                               'g(1)=', 'g(2)=', 'g(3)='], [3, 3])
+    u = open_dof(path, step, time)
+    do k = 1, size(records)
+      associate (r => records(k))
+        write (u, '(a)') '$bdyty'
+        write (u, '(1x,a5,i9)') 'RBDY3', r%body
+        write (u, '(a)') '$nodty'
+        write (u, '(1x,a5,2x,i5,16x,3(a5,d14.7,:,2x))') 'NO6xx', 1, 'X(1)=', r%x(1), 'X(2)=', r%x(2), 'X(3)=', r%x(3)
+        write (u, fmt_3) 'X(4)=', r%x(4), 'X(5)=', r%x(5), 'X(6)=', r%x(6)
+        write (u, fmt_3) 'V(1)=', r%v(1), 'V(2)=', r%v(2), 'V(3)=', r%v(3)
+        write (u, fmt_3) 'V(4)=', r%v(4), 'V(5)=', r%v(5), 'V(6)=', r%v(6)
+        do j = 1, 3
+          write (u, fmt_3) (axis_label(i, j), r%frame(i, j), i=1, 3)
+        end do
+        write (u, '(a)') '$$$$$$'
+        write (u, '(a)') '      '
+      end associate
+    end do
+    write (u, '(a)') rule
+    write (u, '(a)') rule
+    call close_part(u, path)
+  end subroutine write_dof_file_3d
+
+  !> Open PATH.part and write the DOF file header (step, time) and its first rule.
+  integer function open_dof(path, step, time) result(u)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: step
+    real(wp), intent(in) :: time
+    u = open_part(path)
+    write (u, '(a)') '     '
+    write (u, '(a)') '! DOF'
+    write (u, '(a)') '     '
+    write (u, fmt_steps) '$steps', step, 'time=', time
+    write (u, '(a)') ' '
+    write (u, '(a)') rule
+  end function open_dof
 
   !> GPV.OUT.n: header, then per meshed body ('$bdyty', body number) its
   !> elements ('$blmty', geometry and rank, '$model' MECAx) with, per Gauss

@@ -11,6 +11,7 @@ module fracas_files
   private
   public :: atomic_rename, file_exists, dir_exists, make_dir, remove_file, list_dir, name_t, &
             close_written, check_written, disk_size, lock_file
+  public :: executable_dir
 
   !> One name of a directory listing.
   type :: name_t
@@ -65,6 +66,17 @@ module fracas_files
   end interface
 
 contains
+
+  !> Directory of the running executable, with a trailing '/' ('' if unknown):
+  !> where a test program writes what it reads back.
+  function executable_dir() result(d)
+    character(len=:), allocatable :: d
+    character(len=4096) :: arg0
+    integer :: i
+    call get_command_argument(0, arg0)
+    i = index(arg0, '/', back=.true.)
+    d = arg0(1:i)
+  end function executable_dir
 
   !> Rename FROM to TO in one step (C rename: atomic within a file system; TO is
   !> replaced if it exists). On failure: fatal, or stat /= 0 when stat is present.

@@ -4,7 +4,7 @@
 program test_h5
   use fracas_kinds, only: wp, ik, i8
   use fracas_testing, only: check_close, check_true, test_finish
-  use fracas_files, only: make_dir, remove_file, file_exists
+  use fracas_files, only: make_dir, remove_file, file_exists, executable_dir
   use fracas_h5, only: hid_t, h5_series_t, h5_create_file, h5_open_file, h5_close_file, &
                        h5_open_objects, h5_create_group, h5_open_group, h5_close_group, h5_exists, &
                        h5_write_attr, h5_read_attr, h5_has_attr, h5_write_dataset, h5_read_dataset, &
@@ -16,7 +16,7 @@ program test_h5
 
   character(len=:), allocatable :: dir
 
-  dir = out_dir()//'test_h5_out'
+  dir = executable_dir()//'test_h5_out'
   call make_dir(dir, parents=.true.)
   call low_level()
   call results_file()
@@ -304,13 +304,4 @@ contains
     call remove_file(path)
   end subroutine big_snapshot
 
-  !> Directory of this executable, with a trailing '/' ('' if unknown).
-  function out_dir() result(d)
-    character(len=:), allocatable :: d
-    character(len=4096) :: arg0
-    integer :: i
-    call get_command_argument(0, arg0)
-    i = index(arg0, '/', back=.true.)
-    d = arg0(1:i)
-  end function out_dir
 end program test_h5

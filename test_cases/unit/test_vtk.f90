@@ -10,7 +10,7 @@ program test_vtk
   use, intrinsic :: iso_fortran_env, only: int8, int32, int64, real32
   use fracas_kinds, only: wp, ik, i8
   use fracas_testing, only: check_close, check_true, test_finish
-  use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, atomic_rename, list_dir, name_t
+  use fracas_files, only: make_dir, file_exists, dir_exists, remove_file, atomic_rename, list_dir, name_t, executable_dir
   use fracas_vtk, only: vtu_t, vtu_begin, vtu_points, vtu_cells, vtu_cells_fixed, vtu_vertex_cells, &
                         vtu_point_data, vtu_cell_data, vtu_field_data, vtu_end, zlib_uncompress, &
                         pvd_t, pvd_init, pvd_add, pvd_free, vtk_vertex, vtk_line, vtk_poly_line, vtk_polygon, &
@@ -26,7 +26,7 @@ program test_vtk
   type(name_t), allocatable :: names(:)
   integer :: k, ios, u, e
 
-  dir = out_dir()//'test_vtk_out'
+  dir = executable_dir()//'test_vtk_out'
   call make_dir(dir, parents=.true.)
   call check_true('make_dir created the output directory', dir_exists(dir))
   call make_dir(dir)   ! existing: fine
@@ -252,15 +252,6 @@ contains
     end do
   end function has_name
 
-  !> Directory of this executable, with a trailing '/' ('' if unknown).
-  function out_dir() result(d)
-    character(len=:), allocatable :: d
-    character(len=4096) :: arg0
-    integer :: i
-    call get_command_argument(0, arg0)
-    i = index(arg0, '/', back=.true.)
-    d = arg0(1:i)
-  end function out_dir
 
   function slurp(path) result(s)
     character(len=*), intent(in) :: path
