@@ -34,6 +34,8 @@ program test_law_table
     inp%name = name
     inp%params = [0.3_wp, 0.3_wp, 1.0e12_wp, 1.0e12_wp, 0.5_wp, 0.5_wp, 0.5_wp, 0.5_wp, 0.5_wp, 0.5_wp]
     if (name(1:4) == 'RST_') inp%params(3:4) = 0.3_wp
+    ! ABP: du1 du2 phi, corners that make its tri-linear envelope (area G)
+    if (index(name, 'ABP_CZM') > 0) inp%params = [inp%params, 0.2_wp]
     call check_true(name//': read by the reader', law_param_count(name) >= 0)
     law = law_from_input(inp)
     call check_true(name//': built by the solver', trim(law%name) == name .and. law%kind /= 0)
