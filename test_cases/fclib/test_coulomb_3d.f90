@@ -8,6 +8,7 @@ program test_coulomb_3d
   use fracas_local_solver, only: coulomb_3d, inverse_block_3d, natural_map_3d
   use fracas_random, only: rng_t, rng_seed, rng_below
   use fracas_testing, only: check_close, check_true, test_finish
+  use fracas_frame_3d, only: identity3
   implicit none
   real(wp) :: w(9), wi(9), q(3), r(3), u(3), mu, worst, m(3, 3), a(3, 3), worst_inv
   integer :: status, i, j, fails, nslide
@@ -58,7 +59,7 @@ program test_coulomb_3d
     if (mod(i, 2) == 0) a = a + 0.1_wp * reshape([(2.0_wp * uniform() - 1.0_wp, j=1, 9)], [3, 3])
     w = reshape(a, [9])
     wi = inverse_block_3d(w)
-    worst_inv = max(worst_inv, maxval(abs(matmul(a, reshape(wi, [3, 3])) - identity())))
+    worst_inv = max(worst_inv, maxval(abs(matmul(a, reshape(wi, [3, 3])) - identity3())))
     q = [(2.0_wp * uniform() - 1.0_wp, j=1, 3)]
     mu = 1.5_wp * uniform()
     if (mod(i, 3) == 0) then
@@ -87,10 +88,4 @@ contains
   real(wp) function uniform()
     uniform = real(rng_below(rng, 1000000), wp) / 1.0e6_wp
   end function uniform
-
-  pure function identity() result(e)
-    real(wp) :: e(3, 3)
-    e = 0.0_wp
-    e(1, 1) = 1.0_wp; e(2, 2) = 1.0_wp; e(3, 3) = 1.0_wp
-  end function identity
 end program test_coulomb_3d

@@ -20,6 +20,7 @@ program test_contact_laws_3d
   use fracas_local_solver, only: coulomb_2d, coulomb_3d, inverse_block_3d
   use fracas_ids, only: st_stick, st_slifw, st_slibw
   use fracas_testing, only: check_close, check_true, test_finish
+  use fracas_frame_3d, only: local3_to_fclib
   implicit none
   real(wp), parameter :: h = 1.0e-4_wp, tol = 1.0e-12_wp
   ! a 2D block (t, n) by rows, not symmetric (a cohesive W' is not) but positive definite
@@ -198,7 +199,7 @@ contains
       q2 = [merge(0.0_wp, 30.0_wp, i == 1), -1.0_wp]
       q3 = [q2(1) * e, q2(2)]
       call coulomb_2d(q2(1), q2(2), we2(1), we2(2), we2(3), we2(4), mu2, rt, rn, st2)
-      call to_fclib(we3, q3, wf, qf)
+      call local3_to_fclib(we3, q3, wf, qf)
       r3 = 0.0_wp
       call coulomb_3d(qf, wf, inverse_block_3d(wf), mu3, r3, st3)
       call check_true(what//': 3D status = 2D status (stick; sliding in any direction)', &
@@ -207,18 +208,4 @@ contains
       call same_3d(what//' local solution', [r3(2:3), r3(1)], [rt, rn], e)
     end do
   end subroutine compare_problem
-
-  !> A local block (by rows, (t1, t2, n)) and vector in FCLib's order (n, t1, t2), column-major.
-  pure subroutine to_fclib(w, q, wf, qf)
-    real(wp), intent(in) :: w(9), q(3)
-    real(wp), intent(out) :: wf(9), qf(3)
-    integer, parameter :: p(3) = [3, 1, 2]    ! FCLib index i is local index p(i)
-    integer :: i, j
-    do j = 1, 3
-      do i = 1, 3
-        wf(i + 3 * (j - 1)) = w(3 * (p(i) - 1) + p(j))
-      end do
-    end do
-    qf = q(p)
-  end subroutine to_fclib
 end program test_contact_laws_3d
