@@ -1,7 +1,7 @@
-!> 3D broad phase: the candidate pairs of 3D contactors (SPHER, PLANx, POLYR)
-!> whose bounding shapes come within the alert distance, for the fine
+!> 3D broad phase: the candidate pairs of 3D contactors (SPHER, PLANx, POLYR,
+!> CYLND) whose bounding shapes come within the alert distance, for the fine
 !> detection (fracas_spspx, fracas_spplx, fracas_prplx, fracas_spprx,
-!> fracas_prprx) to examine.
+!> fracas_prprx, fracas_spcdx, fracas_cdplx) to examine.
 !> - Each contactor is a bounding sphere (centre, radius: `tactor3_bound`);
 !>   a big one (a PLANx, or a sphere much larger than the others:
 !>   `broad3_big`) may also carry an oriented box (half lengths, frame), which
@@ -22,7 +22,7 @@
 module fracas_broad_3d
   use fracas_kinds, only: wp, i8
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use fracas_contactors_3d, only: tactor3_t, tk3_spher, tk3_planx, tk3_polyr
+  use fracas_contactors_3d, only: tactor3_t, tk3_spher, tk3_planx, tk3_polyr, tk3_cylnd
   implicit none
   private
   public :: broad3_t, broad3_pairs, broad3_brute, tactor3_bound, broad3_big
@@ -50,6 +50,8 @@ contains
       tactor3_bound = norm2(t%axes)
     case (tk3_polyr)
       tactor3_bound = maxval(norm2(t%vert, dim=1))
+    case (tk3_cylnd)
+      tactor3_bound = t%axes(1) + t%radius
     case default
       tactor3_bound = 0.0_wp
     end select
