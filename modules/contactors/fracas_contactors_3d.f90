@@ -53,13 +53,14 @@ module fracas_contactors_3d
 contains
 
   !> The contactors of one body as read (fracas_read_bodies_3d): SPHER and
-  !> SPHEb (a sphere with an offset) are spheres.
+  !> SPHEb (a sphere with an offset) are spheres; a CYLND keeps High in axes(1).
   pure function tactors3_from_input(inp) result(t)
     type(tactor3_input_t), intent(in) :: inp(:)
     type(tactor3_t) :: t(size(inp))
     integer :: k
     do k = 1, size(inp)
       t(k)%kind = merge(tk3_planx, tk3_spher, inp(k)%kind == 'PLANx')
+      if (inp(k)%kind == 'CYLND') t(k)%kind = tk3_cylnd
       t(k)%color = inp(k)%color
       t(k)%radius = inp(k)%radius
       t(k)%axes = inp(k)%axes

@@ -14,12 +14,21 @@
 !>  standing at height 2.01: one contact (lower end), gap 0.01;
 !>  turned 30 degrees about y, centre height 1 + cos 30 + 0.02: one, gap 0.02;
 !>  lying under the plane at -1.1: two, n = -z.
+!> BODIES.DAT: a CYLND line as LMGC90 writes it ('High=' at 35-48, 'byrd='
+!> at 56-69) with a localframe turned 30 degrees about x and an offset, read
+!> (read_bodies_3d) and built: High 1, byrd 0.5, the frame and the offset as
+!> written (to the file's 7 digits: 1e-7), mass 2000 pi/2, I3 2000 pi/16,
+!> body centre = node + offset.
 !> Planted (each went red): the axis segment not clamped (an infinite
 !> cylinder); CDPLx keeping the first end only; I1 with h^2/12; the SPCDx
 !> normal from the sphere to the CYLND.
 program test_cylnd_3d
   use fracas_kinds, only: wp
-  use fracas_contactors_3d, only: tactor3_t, tk3_cylnd, cylnd_volume_inertia, body3_mass_properties
+  use fracas_contactors_3d, only: tactor3_t, tk3_cylnd, cylnd_volume_inertia, body3_mass_properties, &
+                                  tactors3_from_input
+  use fracas_deck_3d, only: body3_input_t
+  use fracas_read_bodies_3d, only: read_bodies_3d
+  use fracas_files, only: executable_dir
   use fracas_spcdx, only: spcdx_geometry
   use fracas_cdplx, only: cdplx_contacts, cdplx_max_points
   use fracas_frame_3d, only: rotation_of_vector, identity3, cross3
@@ -84,6 +93,42 @@ program test_cylnd_3d
                       identity3(), [5.0_wp, 5.0_wp, 0.5_wp], 0.15_wp, n, gaps, points, frames)
   call check_true('CDPLx under the plane: two contacts', n == 2)
   call check_pl('CDPLx under the plane, end +x', 2, 0.1_wp, [0.0_wp, 0.0_wp, -1.0_wp], [1.0_wp, 0.0_wp, -0.55_wp])
+
+  ! BODIES.DAT
+  block
+    type(body3_input_t), allocatable :: bodies(:)
+    type(tactor3_t), allocatable :: tb(:)
+    character(len=:), allocatable :: path
+    integer :: u
+    path = executable_dir()//'test_cylnd_3d_BODIES.DAT'
+    open (newunit=u, file=path, status='replace', action='write')
+    write (u, '(a)') '$bdyty', ' RBDY3      1', '$blmty', ' PLAIN      1  behav  STONE  avrd= 0.0000000D+00', &
+      '$nodty', ' NO6xx      1                coo1= 1.0000000D+00  coo2= 2.0000000D+00  coo3= 3.0000000D+00', &
+      '                             coo4= 0.0000000D+00  coo5= 0.0000000D+00  coo6= 0.0000000D+00', '$tacty', &
+      ' CYLND      1  color  BLUEx  High= 1.0000000D+00  byrd= 5.0000000D-01', &
+      '                             localframe', &
+      '                             alp1= 1.0000000D+00  alp2= 0.0000000D+00  alp3= 0.0000000D+00', &
+      '                             bet1= 0.0000000D+00  bet2= 8.6602540D-01  bet3= 5.0000000D-01', &
+      '                             gam1= 0.0000000D+00  gam2=-5.0000000D-01  gam3= 8.6602540D-01', &
+      '                             coo1= 0.0000000D+00  coo2= 0.0000000D+00  coo3=-5.0000000D-02', '$$$$$$'
+    close (u)
+    call read_bodies_3d(path, bodies)
+    call check_true('BODIES.DAT: one body, one CYLND', size(bodies) == 1)
+    tb = tactors3_from_input(bodies(1)%tactors)
+    call check_true('BODIES.DAT: the contactor is a CYLND', tb(1)%kind == tk3_cylnd)
+    call check_close('BODIES.DAT: High', tb(1)%axes(1), 1.0_wp, 0.0_wp)
+    call check_close('BODIES.DAT: byrd', tb(1)%radius, 0.5_wp, 0.0_wp)
+    call check_close('BODIES.DAT: localframe gamma = (0, -1/2, sqrt 3/2)', &
+                     maxval(abs(tb(1)%frame(:, 3) - [0.0_wp, -0.5_wp, sqrt(3.0_wp) / 2.0_wp])), 0.0_wp, 1.0e-7_wp)
+    rot = tb(1)%frame
+    avrd = 0.0_wp
+    call body3_mass_properties(tb, bodies(1)%coor(1:3), 2000.0_wp, avrd, centre, bframe, mass, inertia)
+    call check_close('BODIES.DAT: mass 2000 pi/2', mass, 1000.0_wp * pi, 1.0e-11_wp)
+    call check_close('BODIES.DAT: I3 2000 pi/16', inertia(3), 125.0_wp * pi, 1.0e-11_wp)
+    call check_close('BODIES.DAT: centre = node + offset', maxval(abs(centre - [1.0_wp, 2.0_wp, 2.95_wp])), 0.0_wp, &
+                     1.0e-15_wp)
+    call check_close('BODIES.DAT: body frame = the localframe', maxval(abs(bframe - rot)), 0.0_wp, 0.0_wp)
+  end block
   call test_finish()
 
 contains
