@@ -216,15 +216,7 @@ contains
 
     subroutine consider(i, j)
       integer, intent(in) :: i, j
-      integer, allocatable :: tmp(:, :)
-      if (.not. near(i, j, c, bound, body, alert, big, half, frame)) return
-      np = np + 1
-      if (np > size(lo_hi, 2)) then
-        allocate (tmp(2, 2 * size(lo_hi, 2)))
-        tmp(:, 1:np - 1) = lo_hi(:, 1:np - 1)
-        call move_alloc(tmp, lo_hi)
-      end if
-      lo_hi(:, np) = [min(i, j), max(i, j)]
+      if (near(i, j, c, bound, body, alert, big, half, frame)) call push_pair(lo_hi, np, min(i, j), max(i, j))
     end subroutine consider
   end subroutine broad3_pairs
 
@@ -249,7 +241,7 @@ contains
     logical, intent(in) :: big(:)
     real(wp), intent(in), optional :: half(:, :), frame(:, :, :)
     logical, allocatable :: usable(:)
-    integer, allocatable :: lo_hi(:, :), tmp(:, :)
+    integer, allocatable :: lo_hi(:, :)
     integer :: i, j, np
     usable = ieee_is_finite(c(1, :)) .and. ieee_is_finite(c(2, :)) .and. ieee_is_finite(c(3, :))
     allocate (lo_hi(2, 64))
@@ -258,20 +250,28 @@ contains
       if (.not. usable(i)) cycle
       do j = i + 1, size(bound)
         if (.not. usable(j)) cycle
-        if (.not. near(i, j, c, bound, body, alert, big, half, frame)) cycle
-        np = np + 1
-        if (np > size(lo_hi, 2)) then
-          allocate (tmp(2, 2 * size(lo_hi, 2)))
-          tmp(:, 1:np - 1) = lo_hi(:, 1:np - 1)
-          call move_alloc(tmp, lo_hi)
-        end if
-        lo_hi(:, np) = [i, j]
+        if (near(i, j, c, bound, body, alert, big, half, frame)) call push_pair(lo_hi, np, i, j)
       end do
     end do
     b%ncells = 0
     b%npairs = np
     b%pair = lo_hi(:, 1:np)
   end subroutine broad3_brute
+
+  !> Append the pair (a, b) to lo_hi(:, 1:np), doubling its room when full.
+  subroutine push_pair(lo_hi, np, a, b)
+    integer, allocatable, intent(inout) :: lo_hi(:, :)
+    integer, intent(inout) :: np
+    integer, intent(in) :: a, b
+    integer, allocatable :: tmp(:, :)
+    np = np + 1
+    if (np > size(lo_hi, 2)) then
+      allocate (tmp(2, 2 * size(lo_hi, 2)))
+      tmp(:, 1:np - 1) = lo_hi(:, 1:np - 1)
+      call move_alloc(tmp, lo_hi)
+    end if
+    lo_hi(:, np) = [a, b]
+  end subroutine push_pair
 
   !> May contactors i and j (of different bodies) come within alert? Two
   !> bounding spheres; a big contactor with a box: the other's bounding sphere

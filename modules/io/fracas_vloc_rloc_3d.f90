@@ -20,6 +20,7 @@ module fracas_vloc_rloc_3d
   use fracas_kinds, only: wp
   use fracas_deck, only: source_t
   use fracas_ids, only: status_id
+  use fracas_read_vloc_rloc, only: read_internal_values
   use fracas_datbox_text, only: text_file_t, text_line_t, load_text, line_error, field, is_blank, &
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, get_steps, check_line_end
   implicit none
@@ -159,8 +160,8 @@ contains
     integer, intent(inout) :: i
     type(contact3_record_t), intent(out) :: r
     type(vloc3_layout_t) :: lay
-    integer :: j, k, c0, nint_
-    real(wp) :: buf(1000), v(3)
+    integer :: j, k, c0
+    real(wp) :: v(3)
     character(len=5) :: label
     associate (ln => tf%lines(i))
       r%inter = get_word(ln, 9, 13, 'interaction type')
@@ -225,18 +226,7 @@ contains
       end select
       j = j + 1
     end do
-    ! internal values up to the next keyword line
-    nint_ = 0
-    do while (is_data(tf, j))
-      do k = 1, (len(tf%lines(j)%text) + 14) / 15
-        if (is_blank(tf%lines(j), 15 * (k - 1) + 1, 15 * k)) cycle
-        nint_ = nint_ + 1
-        if (nint_ > size(buf)) call line_error(tf%lines(j), 1, 'too many internal values')
-        buf(nint_) = get_real(tf%lines(j), 15 * (k - 1) + 1, 15 * k, 'internal value '//itoa(nint_))
-      end do
-      j = j + 1
-    end do
-    r%internals = buf(1:nint_)
+    call read_internal_values(tf, j, r%internals)
     i = j
 
   contains

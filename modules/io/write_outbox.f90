@@ -38,7 +38,7 @@ contains
     type(dof_record_t), intent(in) :: records(:)
     integer :: u, k, j
 
-    u = open_dof(path, step, time)
+    u = open_titled(path, '! DOF', 5, step, time)
     do k = 1, size(records)
       associate (r => records(k))
         if (r%model /= 'RBDY2') cycle
@@ -89,7 +89,7 @@ contains
     integer :: u, k, i, j
     character(len=5), parameter :: axis_label(3, 3) = reshape(['a(1)=', 'a(2)=', 'a(3)=', 'b(1)=', 'b(2)=', 'b(3)=', &
                                                                'g(1)=', 'g(2)=', 'g(3)='], [3, 3])
-    u = open_dof(path, step, time)
+    u = open_titled(path, '! DOF', 5, step, time)
     do k = 1, size(records)
       associate (r => records(k))
         write (u, '(a)') '$bdyty'
@@ -111,19 +111,20 @@ contains
     call close_part(u, path)
   end subroutine write_dof_file_3d
 
-  !> Open PATH.part and write the DOF file header (step, time) and its first rule.
-  integer function open_dof(path, step, time) result(u)
-    character(len=*), intent(in) :: path
-    integer, intent(in) :: step
+  !> Open PATH.part and write LMGC90's header: a blank line, TITLE, PAD blanks
+  !> (LMGC90 pads DOF's with 5, Vloc_Rloc's with 6), '$steps', a blank, a rule.
+  integer function open_titled(path, title, pad, step, time) result(u)
+    character(len=*), intent(in) :: path, title
+    integer, intent(in) :: pad, step
     real(wp), intent(in) :: time
     u = open_part(path)
     write (u, '(a)') '     '
-    write (u, '(a)') '! DOF'
-    write (u, '(a)') '     '
+    write (u, '(a)') title
+    write (u, '(a)') repeat(' ', pad)
     write (u, fmt_steps) '$steps', step, 'time=', time
     write (u, '(a)') ' '
     write (u, '(a)') rule
-  end function open_dof
+  end function open_titled
 
   !> GPV.OUT.n: header, then per meshed body ('$bdyty', body number) its
   !> elements ('$blmty', geometry and rank, '$model' MECAx) with, per Gauss
@@ -180,7 +181,7 @@ contains
     integer :: u, k
     type(vloc_layout_t) :: lay
 
-    u = open_vloc(path, step, time)
+    u = open_titled(path, '! Vloc_Rloc', 6, step, time)
     do k = 1, size(records)
       associate (r => records(k))
         lay = vloc_layout(r%inter)
@@ -209,7 +210,7 @@ contains
     real(wp), intent(in) :: time
     type(contact3_record_t), intent(in) :: records(:)
     integer :: u, k
-    u = open_vloc(path, step, time)
+    u = open_titled(path, '! Vloc_Rloc', 6, step, time)
     do k = 1, size(records)
       call write_vloc3_record(u, records(k))
       if (allocated(records(k)%internals)) call write_internals(u, records(k)%internals, '')
@@ -217,20 +218,6 @@ contains
     end do
     call close_part(u, path)
   end subroutine write_vloc_rloc_file_3d
-
-  !> Open PATH.part and write the Vloc_Rloc header (step, time) and its rule.
-  integer function open_vloc(path, step, time) result(u)
-    character(len=*), intent(in) :: path
-    integer, intent(in) :: step
-    real(wp), intent(in) :: time
-    u = open_part(path)
-    write (u, '(a)') '     '
-    write (u, '(a)') '! Vloc_Rloc'
-    write (u, '(a)') '      '
-    write (u, fmt_steps) '$steps', step, 'time=', time
-    write (u, '(a)') ' '
-    write (u, '(a)') rule
-  end function open_vloc
 
   !> A record's internal values, if any: a '#' line naming them (NAME when
   !> there is one value and a name), then internals_per_line values per line.
