@@ -25,9 +25,12 @@ module fracas_contactors_3d
   private
   public :: tactor3_t, tk3_spher, tk3_planx, tk3_polyr, sphere_volume_inertia, planx_volume_inertia, &
             polyr_from_surface, body3_mass_properties, tactor3_place, tactors3_from_input, &
-            polyr_vertices, box_surface
+            polyr_vertices, box_surface, tk3_cylnd, cylnd_volume_inertia
 
   integer, parameter :: tk3_spher = 1, tk3_planx = 2, tk3_polyr = 3
+  !> CYLND (LMGC90's): radius byrd, axes(1) = High, the half length of its axis
+  !> segment, along the frame's third axis; for contact a capsule (fracas_spcdx, fracas_cdplx).
+  integer, parameter :: tk3_cylnd = 4
   real(wp), parameter :: pi = acos(-1.0_wp)
 
   !> One 3D contactor of a rigid body. Read: shift and frame in the deck's
@@ -50,13 +53,14 @@ module fracas_contactors_3d
 contains
 
   !> The contactors of one body as read (fracas_read_bodies_3d): SPHER and
-  !> SPHEb (a sphere with an offset) are spheres.
+  !> SPHEb (a sphere with an offset) are spheres; a CYLND keeps High in axes(1).
   pure function tactors3_from_input(inp) result(t)
     type(tactor3_input_t), intent(in) :: inp(:)
     type(tactor3_t) :: t(size(inp))
     integer :: k
     do k = 1, size(inp)
       t(k)%kind = merge(tk3_planx, tk3_spher, inp(k)%kind == 'PLANx')
+      if (inp(k)%kind == 'CYLND') t(k)%kind = tk3_cylnd
       t(k)%color = inp(k)%color
       t(k)%radius = inp(k)%radius
       t(k)%axes = inp(k)%axes
@@ -86,6 +90,18 @@ contains
     inertia = vol / 3.0_wp * [a(2)**2 + a(3)**2, a(1)**2 + a(3)**2, a(1)**2 + a(2)**2]
   end subroutine planx_volume_inertia
 
+  !> Volume and principal inertia per unit density of a CYLND of half length h
+  !> and radius r as LMGC90 computes them (its a_BDARY_CYLND reader): a plain
+  !> cylinder, the caps left out: V = 2 pi r^2 h, I1 = I2 = (r^2/4 + h^2/3) V
+  !> about the transverse axes, I3 = r^2/2 V about its axis.
+  pure subroutine cylnd_volume_inertia(h, r, vol, inertia)
+    real(wp), intent(in) :: h, r
+    real(wp), intent(out) :: vol, inertia(3)
+    vol = 2.0_wp * pi * r**2 * h
+    inertia(1:2) = (0.25_wp * r**2 + h**2 / 3.0_wp) * vol
+    inertia(3) = 0.5_wp * r**2 * vol
+  end subroutine cylnd_volume_inertia
+
   !> A POLYR from its vertices (given in the body's deck axes, relative to the
   !> node) and outward triangles: offset = centroid, frame = principal axes,
   !> vertices re-expressed in them (LMGC90 does the same on reading). A
@@ -114,6 +130,8 @@ contains
       call sphere_volume_inertia(t%radius, vol, inertia)
     case (tk3_planx)
       call planx_volume_inertia(t%axes, vol, inertia)
+    case (tk3_cylnd)
+      call cylnd_volume_inertia(t%axes(1), t%radius, vol, inertia)
     case default
       vol = t%volume
       inertia = t%moments

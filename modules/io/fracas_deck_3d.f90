@@ -10,10 +10,10 @@ module fracas_deck_3d
 
   !> One $tacty line of an RBDY3 (and its continuation lines).
   type :: tactor3_input_t
-    character(len=5) :: kind = ''        !< 'SPHER', 'SPHEb' (a sphere with an offset), 'PLANx' or 'POLYR'
+    character(len=5) :: kind = ''        !< 'SPHER', 'SPHEb' (a sphere with an offset), 'PLANx', 'POLYR' or 'CYLND'
     character(len=5) :: color = ''
-    real(wp) :: radius = 0.0_wp          !< SPHER byrd=
-    real(wp) :: axes(3) = 0.0_wp         !< PLANx axe1= axe2= axe3= (half lengths, half thickness)
+    real(wp) :: radius = 0.0_wp          !< SPHER, CYLND byrd=
+    real(wp) :: axes(3) = 0.0_wp         !< PLANx axe1= axe2= axe3= (half lengths, half thickness); CYLND High= in axes(1)
     !> PLANx 'localframe' block: axes alpha, beta, gamma (columns), global; identity if absent
     real(wp) :: frame(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
     real(wp) :: shift(3) = 0.0_wp        !< offset from the node (SPHEb's line, PLANx's 'localframe' block)

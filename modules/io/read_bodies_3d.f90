@@ -10,6 +10,9 @@
 !>   its offset from the node); ' PLANx  1  color  COLOR
 !>   axe1= axe2= axe3=', optionally followed by 'localframe' (columns 30-39)
 !>   and the lines alpha, beta, gamma (the plane's axes) and coo1..3 (offset);
+!> - ' CYLND  1  color  COLOR  High= h  byrd= r' (h: half length of the axis
+!>   segment, along the contactor's third axis), with the same optional
+!>   'localframe' block;
 !> - ' POLYR  1  color  COLOR  nb_vertex= nv  nb_faces= nf', nv vertex lines
 !>   (coo1..3, relative to the node) and nf lines of three vertex numbers;
 !> - $$$$$$ ends the body.
@@ -143,7 +146,6 @@ contains
     type(text_file_t), intent(in) :: tf
     integer, intent(inout) :: i
     type(tactor3_input_t), intent(out) :: t
-    real(wp) :: g
     integer :: k
     associate (ln => tf%lines(i))
       t%src = ln%src
@@ -164,32 +166,50 @@ contains
         do k = 1, 3
           if (t%axes(k) <= 0.0_wp) call line_error(ln, value_col(k), 'PLANx half axes must be > 0, found '//rtoa(t%axes(k)))
         end do
-        if (is_data(tf, i + 1)) then
-          if (field(tf%lines(i + 1), 30, 39) == 'localframe') then
-            if (.not. all([(is_data(tf, i + 1 + k), k=1, 4)])) &
-              call line_error(tf%lines(i + 1), 30, "'localframe' must be followed by the alpha, beta, gamma and coo lines")
-            do k = 1, 3
-              t%frame(:, k) = values3(tf%lines(i + 1 + k), 'axis')
-            end do
-            t%shift = values3(tf%lines(i + 5), 'coo')
-            ! an orthonormal right-handed frame, to the 7 digits the file keeps
-            g = maxval(abs(matmul(transpose(t%frame), t%frame) - identity3()))
-            if (g > 1.0e-6_wp) call line_error(tf%lines(i + 2), 35, 'the PLANx localframe is not orthonormal ' &
-                                                //'(|F^T F - I| = '//rtoa(g)//')')
-            i = i + 5
-          end if
-        end if
+        call read_localframe(tf, i, t)
+      case ('CYLND')
+        ! 'High=' (half length of the axis segment) at 35-48, 'byrd=' at 56-69, as LMGC90
+        t%axes(1) = get_real(ln, 35, 48, "half length 'High='")
+        t%radius = get_real(ln, 56, 69, "radius 'byrd='")
+        if (t%axes(1) <= 0.0_wp) call line_error(ln, 35, 'CYLND High must be > 0, found '//rtoa(t%axes(1)))
+        if (t%radius <= 0.0_wp) call line_error(ln, 56, 'CYLND radius must be > 0, found '//rtoa(t%radius))
+        call check_line_end(ln, 69, 'the CYLND line')
+        call read_localframe(tf, i, t)
       case ('POLYR')
         call read_polyr(tf, i, t)
-      case ('CYLND', 'DNLYC', 'PT3Dx', 'POLYF')
-        call line_error(ln, 2, "contactor '"//t%kind//"' is not read yet (3D: SPHER, SPHEb, PLANx, POLYR)")
+      case ('DNLYC', 'PT3Dx', 'POLYF')
+        call line_error(ln, 2, "contactor '"//t%kind//"' is not read yet (3D: SPHER, SPHEb, PLANx, POLYR, CYLND)")
       case default
         call line_error(ln, 2, "unknown contactor type '"//trim(t%kind)//"' for RBDY3 (supported: SPHER, SPHEb, " &
-                        //"PLANx, POLYR)")
+                        //"PLANx, POLYR, CYLND)")
       end select
     end associate
     i = i + 1
   end subroutine read_tactor3
+
+  !> The optional 'localframe' block after line i of a PLANx or CYLND (columns
+  !> 30-39), then the lines alpha, beta, gamma (axes, global) and coo1..3
+  !> (offset); i ends at its last line.
+  subroutine read_localframe(tf, i, t)
+    type(text_file_t), intent(in) :: tf
+    integer, intent(inout) :: i
+    type(tactor3_input_t), intent(inout) :: t
+    real(wp) :: g
+    integer :: k
+    if (.not. is_data(tf, i + 1)) return
+    if (field(tf%lines(i + 1), 30, 39) /= 'localframe') return
+    if (.not. all([(is_data(tf, i + 1 + k), k=1, 4)])) &
+      call line_error(tf%lines(i + 1), 30, "'localframe' must be followed by the alpha, beta, gamma and coo lines")
+    do k = 1, 3
+      t%frame(:, k) = values3(tf%lines(i + 1 + k), 'axis')
+    end do
+    t%shift = values3(tf%lines(i + 5), 'coo')
+    ! an orthonormal right-handed frame, to the 7 digits the file keeps
+    g = maxval(abs(matmul(transpose(t%frame), t%frame) - identity3()))
+    if (g > 1.0e-6_wp) call line_error(tf%lines(i + 2), 35, 'the '//t%kind//' localframe is not orthonormal ' &
+                                        //'(|F^T F - I| = '//rtoa(g)//')')
+    i = i + 5
+  end subroutine read_localframe
 
   !> A POLYR line ('nb_vertex=' count in columns 40-47, 'nb_faces=' in 60-67),
   !> its vertex lines (coo1..3) and face lines (three vertex numbers in columns

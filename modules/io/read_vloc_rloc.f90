@@ -15,7 +15,7 @@ module fracas_read_vloc_rloc
                                 keyword_of, is_data, get_real, get_int, get_word, itoa, get_steps
   implicit none
   private
-  public :: read_vloc_rloc_file, vloc_layout_t, vloc_layout, internals_per_line
+  public :: read_vloc_rloc_file, vloc_layout_t, vloc_layout, internals_per_line, read_internal_values
 
   !> Start columns of the fields of an id line (0: field absent). Words and
   !> integers are 5 wide except iadj (w_iadj). cdver/anseg columns hold the
@@ -134,8 +134,7 @@ contains
     type(body_input_t), intent(in), optional :: bodies(:)
     type(law_input_t), intent(in), optional :: laws(:)
     type(vloc_layout_t) :: lay
-    integer :: j, k, nint_, nf
-    real(wp) :: buf(1000)
+    integer :: j
 
     associate (ln => tf%lines(i))
       r%inter = get_word(ln, 9, 13, 'interaction type')
@@ -202,21 +201,30 @@ contains
         j = j + 1
       end if
     end if
-    ! Internal values up to the next keyword line.
-    nint_ = 0
+    call read_internal_values(tf, j, r%internals)
+    i = j
+  end subroutine read_record
+
+  !> The internal values of a record, 15-character fields, from line j up to
+  !> the next keyword line (where j ends).
+  subroutine read_internal_values(tf, j, values)
+    type(text_file_t), intent(in) :: tf
+    integer, intent(inout) :: j
+    real(wp), allocatable, intent(out) :: values(:)
+    real(wp) :: buf(1000)
+    integer :: k, n
+    n = 0
     do while (is_data(tf, j))
-      nf = (len(tf%lines(j)%text) + 14)/15
-      do k = 1, nf
-        if (is_blank(tf%lines(j), 15*(k - 1) + 1, 15*k)) cycle
-        nint_ = nint_ + 1
-        if (nint_ > size(buf)) call line_error(tf%lines(j), 1, 'too many internal values')
-        buf(nint_) = get_real(tf%lines(j), 15*(k - 1) + 1, 15*k, 'internal value '//itoa(nint_))
+      do k = 1, (len(tf%lines(j)%text) + 14) / 15
+        if (is_blank(tf%lines(j), 15 * (k - 1) + 1, 15 * k)) cycle
+        n = n + 1
+        if (n > size(buf)) call line_error(tf%lines(j), 1, 'too many internal values')
+        buf(n) = get_real(tf%lines(j), 15 * (k - 1) + 1, 15 * k, 'internal value '//itoa(n))
       end do
       j = j + 1
     end do
-    r%internals = buf(1:nint_)
-    i = j
-  end subroutine read_record
+    values = buf(1:n)
+  end subroutine read_internal_values
 
   !> The n lines from j on must be data lines.
   subroutine need_values(tf, j, n, r)

@@ -9,9 +9,10 @@ module fracas_write_outbox
   use fracas_deck, only: dof_record_t, contact_record_t, gpv_record_t
   use fracas_deck_3d, only: dof3_record_t
   use fracas_read_vloc_rloc, only: vloc_layout_t, vloc_layout, internals_per_line
+  use fracas_vloc_rloc_3d, only: contact3_record_t, write_vloc3_record
   implicit none
   private
-  public :: write_dof_file, write_vloc_rloc_file, write_gpv_file, write_dof_file_3d
+  public :: write_dof_file, write_vloc_rloc_file, write_gpv_file, write_dof_file_3d, write_vloc_rloc_file_3d
 
   character(len=*), parameter :: rule = '!-----------------------------------------------------------------------'
   !> Names of the 2D cohesive internals (L, ut, un, beta, TPSini) in the comment
@@ -37,7 +38,7 @@ contains
     type(dof_record_t), intent(in) :: records(:)
     integer :: u, k, j
 
-    u = open_dof(path, step, time)
+    u = open_titled(path, '! DOF', 5, step, time)
     do k = 1, size(records)
       associate (r => records(k))
         if (r%model /= 'RBDY2') cycle
@@ -88,7 +89,7 @@ contains
     integer :: u, k, i, j
     character(len=5), parameter :: axis_label(3, 3) = reshape(['a(1)=', 'a(2)=', 'a(3)=', 'b(1)=', 'b(2)=', 'b(3)=', &
                                                                'g(1)=', 'g(2)=', 'g(3)='], [3, 3])
-    u = open_dof(path, step, time)
+    u = open_titled(path, '! DOF', 5, step, time)
     do k = 1, size(records)
       associate (r => records(k))
         write (u, '(a)') '$bdyty'
@@ -110,19 +111,20 @@ contains
     call close_part(u, path)
   end subroutine write_dof_file_3d
 
-  !> Open PATH.part and write the DOF file header (step, time) and its first rule.
-  integer function open_dof(path, step, time) result(u)
-    character(len=*), intent(in) :: path
-    integer, intent(in) :: step
+  !> Open PATH.part and write LMGC90's header: a blank line, TITLE, PAD blanks
+  !> (LMGC90 pads DOF's with 5, Vloc_Rloc's with 6), '$steps', a blank, a rule.
+  integer function open_titled(path, title, pad, step, time) result(u)
+    character(len=*), intent(in) :: path, title
+    integer, intent(in) :: pad, step
     real(wp), intent(in) :: time
     u = open_part(path)
     write (u, '(a)') '     '
-    write (u, '(a)') '! DOF'
-    write (u, '(a)') '     '
+    write (u, '(a)') title
+    write (u, '(a)') repeat(' ', pad)
     write (u, fmt_steps) '$steps', step, 'time=', time
     write (u, '(a)') ' '
     write (u, '(a)') rule
-  end function open_dof
+  end function open_titled
 
   !> GPV.OUT.n: header, then per meshed body ('$bdyty', body number) its
   !> elements ('$blmty', geometry and rank, '$model' MECAx) with, per Gauss
@@ -176,16 +178,10 @@ contains
     integer, intent(in) :: step
     real(wp), intent(in) :: time
     type(contact_record_t), intent(in) :: records(:)
-    integer :: u, k, j, n
+    integer :: u, k
     type(vloc_layout_t) :: lay
 
-    u = open_part(path)
-    write (u, '(a)') '     '
-    write (u, '(a)') '! Vloc_Rloc'
-    write (u, '(a)') '      '
-    write (u, fmt_steps) '$steps', step, 'time=', time
-    write (u, '(a)') ' '
-    write (u, '(a)') rule
+    u = open_titled(path, '! Vloc_Rloc', 6, step, time)
     do k = 1, size(records)
       associate (r => records(k))
         lay = vloc_layout(r%inter)
@@ -199,24 +195,48 @@ contains
           write (u, fmt_3) 'n(1)=', r%normal(1), 'n(2)=', r%normal(2), 'n(3)=', 0.0_wp
           write (u, fmt_3) 'coo1=', r%coor(1), 'coo2=', r%coor(2), 'coo3=', 0.0_wp
         end if
-        if (allocated(r%internals)) then
-          n = size(r%internals)
-          if (n > 0) then
-            if (len_trim(r%internal_name) > 0 .and. n == 1) then
-              write (u, '(a)') '#'//r%internal_name
-            else
-              write (u, '(a)') '#'//internal_comment(n)
-            end if
-            do j = 1, n, internals_per_line
-              write (u, '(*(1x,d14.7))') r%internals(j:min(n, j + internals_per_line - 1))
-            end do
-          end if
-        end if
+        if (allocated(r%internals)) call write_internals(u, r%internals, r%internal_name)
         write (u, '(a)') ' '
       end associate
     end do
     call close_part(u, path)
   end subroutine write_vloc_rloc_file
+
+  !> Vloc_Rloc.OUT.n of 3D interactions (fracas_vloc_rloc_3d's layouts): the
+  !> header of the 2D file, then per record its lines and internal values.
+  subroutine write_vloc_rloc_file_3d(path, step, time, records)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: step
+    real(wp), intent(in) :: time
+    type(contact3_record_t), intent(in) :: records(:)
+    integer :: u, k
+    u = open_titled(path, '! Vloc_Rloc', 6, step, time)
+    do k = 1, size(records)
+      call write_vloc3_record(u, records(k))
+      if (allocated(records(k)%internals)) call write_internals(u, records(k)%internals, '')
+      write (u, '(a)') ' '
+    end do
+    call close_part(u, path)
+  end subroutine write_vloc_rloc_file_3d
+
+  !> A record's internal values, if any: a '#' line naming them (NAME when
+  !> there is one value and a name), then internals_per_line values per line.
+  subroutine write_internals(u, internals, name)
+    integer, intent(in) :: u
+    real(wp), intent(in) :: internals(:)
+    character(len=*), intent(in) :: name
+    integer :: n, j
+    n = size(internals)
+    if (n == 0) return
+    if (len_trim(name) > 0 .and. n == 1) then
+      write (u, '(a)') '#'//name
+    else
+      write (u, '(a)') '#'//internal_comment(n)
+    end if
+    do j = 1, n, internals_per_line
+      write (u, '(*(1x,d14.7))') internals(j:min(n, j + internals_per_line - 1))
+    end do
+  end subroutine write_internals
 
   !> The id line of a record, fields placed at the columns of its layout.
   function id_line(r, lay) result(s)
