@@ -17,15 +17,16 @@
 !> starts the step at its imposed value (run control driven_start).
 module fracas_mailx
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use fracas_kinds, only: wp
+  use fracas_kinds, only: wp, resolvable_length
   use fracas_errors, only: fatal, input_error, status_t, raise, failed
-  use fracas_strings, only: itoa, rtoa
+  use fracas_strings, only: itoa, rtoa, rtoa_list
+  use fracas_energy, only: energy_terms_t
   use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t, model_finite_strain
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, el_geometry_ok, el_area
   use fracas_bulk, only: bulk_t, bulk_j2, bulk_j2_finite, bulk_elastic, plane_strain, &
                          plane_stress, plane_axisym, gp_size, bulk_from_material, &
-                         gp_pxx, gp_pzz, gp_p
+                         gp_pxx, gp_pzz, gp_p, gp_stress, gp_strain, gp_plastic_strain
   use fracas_sparse, only: sparse_t, sparse_from_triplets, sparse_matvec
   use fracas_linear_solver, only: factor_t, factor_build, factor_update, factor_solve, factor_free, &
                                   factor_method_name, dense_spd_inverse
@@ -34,7 +35,7 @@ module fracas_mailx
   public :: mailx_t, mailx_build, mailx_free, mailx_restore_state, mailx_set_time_step, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
-            mailx_dense_max, mailx_gauss_values, mailx_radius
+            mailx_dense_max, mailx_gauss_values, mailx_radius, mailx_energy_terms, mailx_fault
 
   !> Bodies with at most this many dofs keep a dense inverse of A_ff (exploded
   !> elements, small meshes: the inverse is the contact compliance); larger
@@ -1274,4 +1275,94 @@ contains
       s = s//'; and '//trim(buf)//' more sparse bodies'
     end if
   end function mailx_solver_summary
+
+  !> The model's terms of the energy audit.
+  pure type(energy_terms_t) function mailx_energy_terms(m) result(e)
+    type(mailx_t), intent(in) :: m
+    e%work_gravity = m%work_gravity
+    e%work_forces = m%work_forces
+    e%work_supports = m%work_supports
+    e%elastic = m%elastic
+    e%plastic = m%plastic_work
+  end function mailx_energy_terms
+
+  !> The state check of the meshed bodies after a step of length h: '' if
+  !> sound, else what is wrong, naming the body (by rank), node or Gauss point:
+  !> a non-finite node or Gauss-point state, a node beyond what double precision
+  !> resolves at its body's size (mailx_radius), in place or in one step, or an
+  !> overflowed energy audit.
+  function mailx_fault(m, h) result(msg)
+    type(mailx_t), intent(in) :: m
+    real(wp), intent(in) :: h
+    character(len=:), allocatable :: msg
+    integer :: k, ib
+    real(wp) :: lim, pos, moved
+    msg = ''
+    if (m%nnodes == 0) return
+    if (.not. (all(ieee_is_finite(m%x)) .and. all(ieee_is_finite(m%v)))) then
+      do k = 1, m%nnodes
+        if (.not. (all(ieee_is_finite(m%x(:, k))) .and. all(ieee_is_finite(m%v(:, k))))) then
+          msg = 'MAILx body '//itoa(m%node_body(k))//' has a non-finite displacement or velocity at node '// &
+                itoa(k - m%node_first(m%node_body(k)) + 1)//' (X '//rtoa_list(m%x(:, k))//', V '// &
+                rtoa_list(m%v(:, k))//')'
+          return
+        end if
+      end do
+    end if
+    if (.not. all(ieee_is_finite(m%gp))) then
+      msg = gauss_point_fault()
+      return
+    end if
+    do ib = 1, m%n
+      lim = resolvable_length(mailx_radius(m, ib))
+      do k = m%node_first(ib), m%node_first(ib + 1) - 1
+        pos = maxval(abs(m%ref(:, k) + m%x(:, k)))
+        moved = h * maxval(abs(m%v(:, k)))
+        if (pos > lim) then
+          msg = 'MAILx body '//itoa(ib)//' ran away: node '//itoa(k - m%node_first(ib) + 1)//' is at '// &
+                rtoa(pos)//' from the origin (displacement '//rtoa_list(m%x(:, k))//'), beyond '//rtoa(lim)// &
+                ' (what double precision resolves at the body''s size, '//rtoa(mailx_radius(m, ib))//')'
+          return
+        end if
+        if (moved > lim) then
+          msg = 'MAILx body '//itoa(ib)//' ran away: the velocity of node '//itoa(k - m%node_first(ib) + 1)// &
+                ' ('//rtoa_list(m%v(:, k))//') moves it by '//rtoa(moved)//' in one step, beyond '//rtoa(lim)// &
+                ' (what double precision resolves at the body''s size, '//rtoa(mailx_radius(m, ib))//')'
+          return
+        end if
+      end do
+    end do
+    if (.not. all(ieee_is_finite([m%elastic, m%plastic_work, m%work_gravity, m%work_forces, m%work_supports]))) then
+      msg = 'the energy audit of the meshes overflowed (elastic '//rtoa(m%elastic)//', plastic work '// &
+            rtoa(m%plastic_work)//', work of supports '//rtoa(m%work_supports)//')'
+      return
+    end if
+
+  contains
+
+    !> The first Gauss point with a non-finite state: body, element, point and quantity.
+    function gauss_point_fault() result(s)
+      character(len=:), allocatable :: s
+      integer :: b, e, g
+      character(len=*), parameter :: names(4) = [character(len=26) :: 'stress', 'strain', 'plastic strain', &
+                                                 'cumulative plastic strain']
+      integer, parameter :: first(4) = [gp_stress, gp_strain, gp_plastic_strain, gp_p]
+      integer :: q
+      s = 'a MAILx body has a non-finite Gauss-point state'
+      do b = 1, m%n
+        do e = m%elem_first(b), m%elem_first(b + 1) - 1
+          do g = m%el_gp(e), m%el_gp(e + 1) - 1
+            if (all(ieee_is_finite(m%gp(:, g)))) cycle
+            do q = 4, 1, -1
+              if (.not. all(ieee_is_finite(m%gp(first(q):merge(first(q), first(q) + 3, q == 4), g)))) &
+                s = 'MAILx body '//itoa(b)//' has a non-finite '//trim(names(q))//' at Gauss point '// &
+                    itoa(g - m%el_gp(e) + 1)//' of its element '//itoa(e - m%elem_first(b) + 1)//' ('// &
+                    rtoa_list(m%gp(first(q):merge(first(q), first(q) + 3, q == 4), g))//')'
+            end do
+            return
+          end do
+        end do
+      end do
+    end function gauss_point_fault
+  end function mailx_fault
 end module fracas_mailx

@@ -23,7 +23,8 @@ module fracas_output
                         vtu_cells_fixed, vtk_line, vtu_field_strings
   use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc, tk_disk, &
                                tk_xksid, tk_alpxx
-  use fracas_scene, only: scene_t, step_report_t
+  use fracas_scene, only: scene_t, step_report_t, scene_energy_terms
+  use fracas_energy, only: energy_terms_t
   use fracas_version, only: version_string, git_commit, build_type, compiler, compiler_flags
   use fracas_contact_laws, only: law_czm, law_iqs_clb_g0, int_beta
   use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file, write_gpv_file
@@ -1173,6 +1174,7 @@ contains
     type(scene_t), intent(in) :: sc
     type(step_report_t), intent(in) :: rep
     real(wp) :: balance, wgrav, wforces, wsupports, crack, damaged
+    type(energy_terms_t) :: e
     real(wp) :: per_family(sc%cracks%nfamilies)
     integer :: nbroken, ndamaged
     real(wp) :: t0
@@ -1181,20 +1183,21 @@ contains
     if (.not. o%h5_open) return
     call cpu_time(t0)
     call cracks_lengths(sc%cracks, crack, damaged, per_family, nbroken, ndamaged)
-    ! Rigid and meshed bodies together (kinetic0 holds the initial kinetic and
+    ! Every body model's terms together (kinetic0 holds the initial kinetic and
     ! elastic energy; meshes add their strain energy and plastic work).
-    wgrav = sc%work_gravity + sc%meshes%work_gravity
-    wforces = sc%work_forces + sc%meshes%work_forces
-    wsupports = sc%work_supports + sc%meshes%work_supports
-    balance = rep%kinetic + sc%meshes%elastic + sc%meshes%plastic_work + sc%cohesive_energy - sc%kinetic0 - &
+    e = scene_energy_terms(sc)
+    wgrav = e%work_gravity
+    wforces = e%work_forces
+    wsupports = e%work_supports
+    balance = rep%kinetic + e%elastic + e%plastic + sc%cohesive_energy - sc%kinetic0 - &
               (wgrav + wforces + wsupports - sc%dissipated)
     row = [real(sc%step, wp), sc%time, real(rep%contacts, wp), &
       real(rep%nlgs%nactive, wp), real(rep%nlgs%sweeps, wp), merge(1.0_wp, 0.0_wp, rep%nlgs%converged .and. rep%newton_converged), &
       rep%nlgs%residual, rep%nlgs%residual_onepq, rep%nlgs%quad_dv, rep%nlgs%maxm_dv, rep%nlgs%mean_dvor, &
       rep%kinetic, wgrav, wforces, wsupports, sc%dissipated, sc%cohesive_energy, &
       sc%damage_dissipated, balance, &
-      rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
-      sc%meshes%plastic_work, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
+      rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, e%elastic, &
+      e%plastic, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
       real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds, &
       real(rep%nlgs%updates, wp), rep%velocity_seconds, real(fragment_count(sc), wp), real(rep%substeps, wp), &
       real(rep%rejected, wp), rep%crack_increment]

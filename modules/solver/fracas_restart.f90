@@ -70,7 +70,7 @@ contains
     st%step_level = sc%step_level
     st%time = sc%time
     st%rng_state = sc%solver%rng%state
-    st%energies = [sc%kinetic0, sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, &
+    st%energies = [sc%kinetic0, sc%bodies%work_gravity, sc%bodies%work_forces, sc%bodies%work_supports, sc%dissipated, &
                    sc%cohesive_energy, sc%damage_dissipated]
     st%x = sc%bodies%x
     st%v = sc%bodies%v
@@ -147,9 +147,9 @@ contains
     sc%time = st%time
     sc%solver%rng%state = st%rng_state
     sc%kinetic0 = st%energies(1)
-    sc%work_gravity = st%energies(2)
-    sc%work_forces = st%energies(3)
-    sc%work_supports = st%energies(4)
+    sc%bodies%work_gravity = st%energies(2)
+    sc%bodies%work_forces = st%energies(3)
+    sc%bodies%work_supports = st%energies(4)
     sc%dissipated = st%energies(5)
     sc%cohesive_energy = st%energies(6)
     sc%damage_dissipated = st%energies(7)
