@@ -32,7 +32,7 @@ module fracas_mailx
                                   factor_method_name, dense_spd_inverse
   implicit none
   private
-  public :: mailx_t, mailx_build, mailx_free, mailx_restore_state, mailx_set_time_step, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
+  public :: mailx_t, mailx_build, mailx_free, mailx_save_state, mailx_restore_state, mailx_set_time_step, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
             mailx_dense_max, mailx_gauss_values, mailx_radius, mailx_energy_terms, mailx_fault
@@ -1020,6 +1020,18 @@ contains
       end where
     end subroutine residual_at_end
   end subroutine mailx_end_step
+
+  !> The meshes' end-of-step state for a restart point (what mailx_restore_state
+  !> takes back).
+  subroutine mailx_save_state(m, x, v, gp, fint, energies)
+    type(mailx_t), intent(in) :: m
+    real(wp), allocatable, intent(out) :: x(:, :), v(:, :), gp(:, :), fint(:, :), energies(:)
+    x = m%x
+    v = m%v
+    gp = m%gp
+    fint = m%fint
+    energies = [m%kinetic0, m%work_gravity, m%work_forces, m%work_supports, m%plastic_work]
+  end subroutine mailx_save_state
 
   !> Put the meshes into a saved end-of-step state (exact restart): nodal
   !> displacements x and velocities v, Gauss-point states gp, internal forces

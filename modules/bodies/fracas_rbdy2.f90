@@ -14,7 +14,7 @@ module fracas_rbdy2
   private
   public :: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_add_step_work, rbdy2_begin_step, &
             rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy, rbdy2_energy_terms, rbdy2_fault, &
-            rbdy2_point_speed
+            rbdy2_point_speed, rbdy2_save_state, rbdy2_restore_state
 
 
   type :: rbdy2_t
@@ -149,6 +149,31 @@ contains
     end do
     b%work_supports = b%work_supports + (-0.5_wp * sum(imp * (b%v + b%vbegin), mask=b%driven))
   end subroutine rbdy2_add_step_work
+
+  !> The bodies' end-of-step state for a restart point: positions x, velocities
+  !> v and the audit's work terms (gravity, forces, supports).
+  subroutine rbdy2_save_state(b, x, v, work)
+    type(rbdy2_t), intent(in) :: b
+    real(wp), allocatable, intent(out) :: x(:, :), v(:, :)
+    real(wp), intent(out) :: work(3)
+    x = b%x
+    v = b%v
+    work = [b%work_gravity, b%work_forces, b%work_supports]
+  end subroutine rbdy2_save_state
+
+  !> Put the bodies into a state rbdy2_save_state took: the end of that step is
+  !> the beginning of the next (rbdy2_end_step).
+  subroutine rbdy2_restore_state(b, x, v, work)
+    type(rbdy2_t), intent(inout) :: b
+    real(wp), intent(in) :: x(:, :), v(:, :), work(3)
+    b%x = x
+    b%xbegin = x
+    b%v = v
+    b%vbegin = v
+    b%work_gravity = work(1)
+    b%work_forces = work(2)
+    b%work_supports = work(3)
+  end subroutine rbdy2_restore_state
 
   !> The model's terms of the energy audit (rigid bodies store no energy).
   pure type(energy_terms_t) function rbdy2_energy_terms(b) result(e)

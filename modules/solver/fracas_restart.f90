@@ -17,7 +17,8 @@ module fracas_restart
   use fracas_state_guard, only: scene_fault
   use fracas_restart_h5, only: restart_state_t, restart_h5_write, restart_h5_read
   use fracas_results_h5, only: results_h5_t
-  use fracas_mailx, only: mailx_restore_state
+  use fracas_rbdy2, only: rbdy2_save_state, rbdy2_restore_state
+  use fracas_mailx, only: mailx_save_state, mailx_restore_state
   implicit none
   private
   public :: restart_save, restart_load, scene_capture, scene_restore
@@ -70,10 +71,12 @@ contains
     st%step_level = sc%step_level
     st%time = sc%time
     st%rng_state = sc%solver%rng%state
-    st%energies = [sc%kinetic0, sc%bodies%work_gravity, sc%bodies%work_forces, sc%bodies%work_supports, sc%dissipated, &
-                   sc%cohesive_energy, sc%damage_dissipated]
-    st%x = sc%bodies%x
-    st%v = sc%bodies%v
+    ! Each body model's state (rigid: x, v and its work terms, energies(2:4)).
+    call rbdy2_save_state(sc%bodies, st%x, st%v, st%energies(2:4))
+    st%energies(1) = sc%kinetic0
+    st%energies(5:7) = [sc%dissipated, sc%cohesive_energy, sc%damage_dissipated]
+    if (sc%meshes%nnodes > 0) &
+      call mailx_save_state(sc%meshes, st%mesh_x, st%mesh_v, st%mesh_gp, st%mesh_fint, st%mesh_energies)
     st%ntactors = sc%tactors%n
     associate (h => sc%hist)
       n = h%n
@@ -98,15 +101,6 @@ contains
       st%pairs(3, :) = d%pair_inter(1:n)
       st%pairs(4, :) = d%pair_law(1:n)
       st%pair_alert = d%pair_alert(1:n)
-    end associate
-    associate (m => sc%meshes)
-      if (m%nnodes > 0) then
-        st%mesh_x = m%x
-        st%mesh_v = m%v
-        st%mesh_gp = m%gp
-        st%mesh_fint = m%fint
-        st%mesh_energies = [m%kinetic0, m%work_gravity, m%work_forces, m%work_supports, m%plastic_work]
-      end if
     end associate
     associate (cr => sc%cracks)
       if (cr%npts > 0) then
@@ -147,17 +141,10 @@ contains
     sc%time = st%time
     sc%solver%rng%state = st%rng_state
     sc%kinetic0 = st%energies(1)
-    sc%bodies%work_gravity = st%energies(2)
-    sc%bodies%work_forces = st%energies(3)
-    sc%bodies%work_supports = st%energies(4)
     sc%dissipated = st%energies(5)
     sc%cohesive_energy = st%energies(6)
     sc%damage_dissipated = st%energies(7)
-    ! End of the step = beginning of the next (rbdy2_end_step).
-    sc%bodies%x = st%x
-    sc%bodies%xbegin = st%x
-    sc%bodies%v = st%v
-    sc%bodies%vbegin = st%v
+    call rbdy2_restore_state(sc%bodies, st%x, st%v, st%energies(2:4))
     associate (h => sc%hist)
       n = size(st%inter)
       h%n = n
