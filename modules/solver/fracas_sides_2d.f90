@@ -75,25 +75,36 @@ contains
   end function rigid_pair
 
   !> Relative velocity (t, n) at contact k for rigid body velocities v and
-  !> mesh node velocities vm.
+  !> mesh node velocities vm: the sides' point velocities (candidate minus
+  !> antagonist) in the frame, then the rigid sides' spin.
   pure function contact_velocity(c, k, v, vm) result(u)
     type(contacts_t), intent(in) :: c
     integer, intent(in) :: k
     real(wp), intent(in) :: v(:, :), vm(:, :)
-    real(wp) :: u(2), dv(2)
-    if (c%cdm(k) == bm_rigid) then
-      dv = v(1:2, c%cdb(k))
-    else
-      dv = mesh2_point_velocity(vm(:, c%mnode(1, k)), vm(:, c%mnode(2, k)), c%mwt(1, k), c%mwt(2, k))
-    end if
-    if (c%anm(k) == bm_rigid) then
-      dv = dv - v(1:2, c%anb(k))
-    else
-      dv = dv - mesh2_point_velocity(vm(:, c%mnode(3, k)), vm(:, c%mnode(4, k)), c%mwt(3, k), c%mwt(4, k))
-    end if
+    real(wp) :: u(2), dv(2), p(2)
+    integer :: sd
+    do sd = 1, 2
+      select case (side_model(c, k, sd))
+      case (bm_rigid)
+        p = v(1:2, side_body(c, k, sd))
+      case (bm_mesh)
+        p = mesh2_point_velocity(vm(:, c%mnode(2 * sd - 1, k)), vm(:, c%mnode(2 * sd, k)), c%mwt(2 * sd - 1, k), &
+                                 c%mwt(2 * sd, k))
+      end select
+      if (sd == 1) then
+        dv = p
+      else
+        dv = dv - p
+      end if
+    end do
     call frame2_local(c%frame(1, 2, k), c%frame(2, 2, k), dv(1), dv(2), u(1), u(2))
-    if (c%cdm(k) == bm_rigid) call rigid2_add_spin(1.0_wp, v(3, c%cdb(k)), c%lever(1, k), c%lever(2, k), u(1), u(2))
-    if (c%anm(k) == bm_rigid) call rigid2_add_spin(-1.0_wp, v(3, c%anb(k)), c%lever(3, k), c%lever(4, k), u(1), u(2))
+    do sd = 1, 2
+      select case (side_model(c, k, sd))
+      case (bm_rigid)
+        call rigid2_add_spin(merge(1.0_wp, -1.0_wp, sd == 1), v(3, side_body(c, k, sd)), c%lever(2 * sd - 1, k), &
+                             c%lever(2 * sd, k), u(1), u(2))
+      end select
+    end do
   end function contact_velocity
 
   !> u(:, k) = the local velocity of every contact for body velocities v, vm.
