@@ -12,8 +12,6 @@ module fracas_nlgs
   use fracas_kinds, only: wp, i8
   use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw, st_cnctc, st_cstck, st_cslfw, st_cslbw
   use fracas_random, only: rng_t, rng_seed, rng_permute
-  use fracas_rbdy2, only: rbdy2_t
-  use fracas_mailx, only: mailx_t
   use fracas_contacts, only: contacts_t
   use fracas_contact_laws, only: law_t, law_local_problem, law_czm, cohesive_elimination, coh_size, coh_law, &
                                  coh_factor, coh_released, coh_u0, coh_h, coh_prev, coh_uend, coh_bracket, coh_wprime, &
@@ -21,7 +19,8 @@ module fracas_nlgs
   use fracas_czm, only: czm_t, czm_beta_update, czm_stored_energy, czm_step_dissipation, czm_step_factor, &
                         czm_beta_power, czm_softening_length
   use fracas_local_solver, only: natural_map_2d, inverse_block
-  use fracas_sides_2d, only: sides2_t, contact_velocity, rigid_pair, sides2_prepare, sides2_delassus, &
+  use fracas_sides_2d, only: bodies2_t, sides2_t, contact_velocity, rigid_pair, sides2_restart_velocities, &
+                             sides2_rigid_bodies, sides2_prepare, sides2_delassus, &
                              sides2_begin_velocities, sides2_reserve, sides2_pack_bodies, sides2_pack_contacts, &
                              sides2_unpack_contacts, sides2_sweep, sides2_unpack_bodies, sides2_local_velocities
   use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
@@ -164,23 +163,22 @@ contains
   !> inverse masses and lever arms, meshed sides from their bodies' contact
   !> compliance), velocities at the beginning of the step, and the local
   !> problem each contact's law poses (shift, friction, cohesion).
-  subroutine nlgs_prepare(solver, c, b, m, laws, h)
+  subroutine nlgs_prepare(solver, c, bd, laws, h)
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
-    type(rbdy2_t), intent(in) :: b
-    type(mailx_t), intent(inout) :: m
+    type(bodies2_t), intent(in) :: bd        !< the body models (fracas_sides_2d)
     type(law_t), intent(in) :: laws(:)
     real(wp), intent(in) :: h
     integer :: k
     real(wp) :: weff(4), coh(coh_size(2)), internals(n_internals(2))
     logical :: active, cohesive, solvable
     call require_2d(c)
-    call sides2_prepare(solver%ws, c, m)
+    call sides2_prepare(solver%ws, c, bd)
     if (.not. allocated(solver%cz)) solver%cz = laws%czm
     internals = 0.0_wp
-    call sides2_local_velocities(c, b%vbegin, m%vbegin, c%u_begin)
+    call sides2_local_velocities(c, bd, .true., c%u_begin)
     do k = 1, c%n
-      call sides2_delassus(solver%ws, c, k, b)
+      call sides2_delassus(solver%ws, c, k, bd)
       ! A nearly rigid tangential direction would make the stick test ill-posed.
       c%w(1, k) = max(c%w(1, k), 1.0e-6_wp * c%w(4, k))
       if (c%with_cohesion) internals = c%internals(:, k)
@@ -221,17 +219,16 @@ contains
   !> each local update instead made Gauss–Seidel cycle; a factor frozen over a block of
   !> sweeps keeps each block a linear problem. The report adds up the sweeps of all
   !> passes.
-  subroutine nlgs_solve(solver, c, b, m, report)
+  subroutine nlgs_solve(solver, c, bd, report)
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
-    type(rbdy2_t), intent(inout) :: b
-    type(mailx_t), intent(inout) :: m
+    type(bodies2_t), intent(in) :: bd
     type(nlgs_report_t), intent(out) :: report
     integer, parameter :: max_passes = 100
     type(nlgs_report_t) :: once
     integer :: pass, checks
     logical :: changed
-    call nlgs_solve_once(solver, c, b, m, report)
+    call nlgs_solve_once(solver, c, bd, report)
     if (.not. (solver%s%damage_midpoint .and. c%with_cohesion)) return   ! lmgc90: no further pass
     checks = solver%s%max_checks
     do pass = 2, max_passes + 1
@@ -240,8 +237,8 @@ contains
       ! The passes share the step's sweep budget (sweeps_per_check x max_checks).
       solver%s%max_checks = checks - (report%sweeps + solver%s%sweeps_per_check - 1) / solver%s%sweeps_per_check
       if (pass > max_passes .or. solver%s%max_checks < 1) exit
-      b%v = b%vfree
-      call nlgs_solve_once(solver, c, b, m, once)
+      call sides2_restart_velocities(bd)
+      call nlgs_solve_once(solver, c, bd, once)
       solver%s%max_checks = checks
       once%sweeps = once%sweeps + report%sweeps
       once%updates = once%updates + report%updates
@@ -347,11 +344,10 @@ contains
   !> entry b%v = vfree (rigid), m%vfree (meshes), and c%r holds the warm start; on
   !> exit the velocities are vfree + M^-1 H^T r (rigid) and vfree + A_ff^-1 H^T r
   !> (meshes), and c%u the final local velocities.
-  subroutine nlgs_solve_once(solver, c, b, m, report)
+  subroutine nlgs_solve_once(solver, c, bd, report)
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
-    type(rbdy2_t), intent(inout) :: b
-    type(mailx_t), intent(inout) :: m
+    type(bodies2_t), intent(in) :: bd
     type(nlgs_report_t), intent(out) :: report
     integer :: k, iblock, isweep, n
     real(wp) :: sums(7), maxes(2), fsum, qsum, vscale
@@ -362,10 +358,10 @@ contains
     report%sweeps = 0
     call grow(solver%order, n)
     call grow(solver%qfree, 2, n)
-    call sides2_reserve(solver%ws, n, b)
+    call sides2_reserve(solver%ws, n, bd)
     ! Free local velocities (the rigid pairs' warm start on the way) and the
     ! velocity scale of the step: free relative velocities and body speeds.
-    call sides2_begin_velocities(c, b, m, solver%qfree, vscale)
+    call sides2_begin_velocities(c, bd, solver%qfree, vscale)
     select case (solver%s%order)
     case ('reversed')
       solver%order(1:n) = [(n + 1 - k, k=1, n)]
@@ -374,7 +370,7 @@ contains
     case default
       solver%order(1:n) = [(k, k=1, n)]
     end select
-    call sides2_pack_bodies(solver%ws, c, b, m)
+    call sides2_pack_bodies(solver%ws, c, bd)
     if (solver%s%order /= 'shuffled') call pack_contacts()
     report%converged = n == 0
     if (n > 0) then
@@ -409,9 +405,9 @@ contains
       end do blocks
       call unpack_contacts()
     end if
-    call sides2_unpack_bodies(solver%ws, c, b, m, report%velocity_seconds)
+    call sides2_unpack_bodies(solver%ws, c, bd, report%velocity_seconds)
     ! Final local velocities, statuses and the natural-map residual.
-    call sides2_local_velocities(c, b%v, m%v, c%u)
+    call sides2_local_velocities(c, bd, .false., c%u)
     fsum = 0.0_wp; qsum = 0.0_wp
     report%nactive = 0
     do k = 1, n
@@ -456,7 +452,7 @@ contains
       integer, parameter :: colour_block = 256, ncol = 64
       integer(i8), allocatable :: used(:)
       integer :: blk(colour_block), col(colour_block), cnt(0:ncol), k, mc, j, cc, nact
-      allocate (used(b%n))
+      allocate (used(sides2_rigid_bodies(bd)))
       used = 0_i8
       nact = 0
       mc = 0

@@ -22,6 +22,7 @@ module fracas_scene
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
   use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts, &
                              history_find_near, history_knows_pair
+  use fracas_sides_2d, only: bodies2_t
   use fracas_nlgs, only: nlgs_t, nlgs_settings_t, nlgs_report_t, nlgs_init, nlgs_prepare, nlgs_solve, &
                          nlgs_update_cohesive
   implicit none
@@ -301,7 +302,7 @@ contains
   !> mid-step), or the run stops. finishes_step = .false.: a sub-step of a cut
   !> step (the step counters stay; fracas_stepping).
   subroutine scene_step(sc, rep, status, finishes_step)
-    type(scene_t), intent(inout) :: sc
+    type(scene_t), intent(inout), target :: sc
     type(step_report_t), intent(out) :: rep
     type(status_t), intent(out), optional :: status
     logical, intent(in), optional :: finishes_step
@@ -311,7 +312,10 @@ contains
     real(wp) :: margin, vmax, gap_end, stored, coh_work, released, dissipated_all
     real(wp), allocatable :: imp(:, :)
     type(nlgs_report_t) :: newton_rep
+    type(bodies2_t) :: bd
     call system_clock(t0, rate)
+    bd%rbdy2 => sc%bodies
+    bd%mailx => sc%meshes
     t1 = t0
     finishes = .true.
     if (present(finishes_step)) finishes = finishes_step
@@ -386,9 +390,9 @@ contains
         end if
       end do
       call lap(rep%detect_seconds)
-      call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h)
+      call nlgs_prepare(sc%solver, c, bd, sc%laws, sc%h)
       call lap(rep%prepare_seconds)
-      call nlgs_solve(sc%solver, c, b, m, rep%nlgs)
+      call nlgs_solve(sc%solver, c, bd, rep%nlgs)
       call lap(rep%solve_seconds)
       rep%velocity_seconds = rep%nlgs%velocity_seconds
       ! Nonlinear meshed bodies: Newton iterations, the contact problem solved
@@ -408,9 +412,9 @@ contains
         sc%solver%s%max_checks = checks_left
         call lap(rep%bodies_seconds)
         b%v = b%vfree
-        call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h)
+        call nlgs_prepare(sc%solver, c, bd, sc%laws, sc%h)
         call lap(rep%prepare_seconds)
-        call nlgs_solve(sc%solver, c, b, m, newton_rep)
+        call nlgs_solve(sc%solver, c, bd, newton_rep)
         call lap(rep%solve_seconds)
         rep%nlgs%sweeps = rep%nlgs%sweeps + newton_rep%sweeps
         rep%nlgs%updates = rep%nlgs%updates + newton_rep%updates

@@ -23,9 +23,17 @@ module fracas_sides_2d
   use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size
   implicit none
   private
-  public :: sides2_t, contact_velocity, rigid_pair, sides2_prepare, sides2_delassus, sides2_begin_velocities, &
-            sides2_reserve, sides2_pack_bodies, sides2_pack_contacts, sides2_unpack_contacts, sides2_sweep, &
-            sides2_unpack_bodies, sides2_local_velocities
+  public :: bodies2_t, sides2_t, contact_velocity, rigid_pair, sides2_prepare, sides2_delassus, &
+            sides2_begin_velocities, sides2_reserve, sides2_pack_bodies, sides2_pack_contacts, sides2_unpack_contacts, &
+            sides2_sweep, sides2_unpack_bodies, sides2_local_velocities, sides2_restart_velocities, sides2_rigid_bodies
+
+  !> The scene's 2D body models as the NLGS sees them: one pointer per model
+  !> (the scene's own objects), so that the NLGS passes them on without naming
+  !> them.
+  type :: bodies2_t
+    type(rbdy2_t), pointer :: rbdy2 => null()
+    type(mailx_t), pointer :: mailx => null()
+  end type bodies2_t
 
   !> The sweep kernels' workspace: each body model's part, and the contacts packed
   !> for each kernel in the current sweep order. Packed rigid kernel (two rigid
@@ -107,39 +115,60 @@ contains
     end do
   end function contact_velocity
 
-  !> u(:, k) = the local velocity of every contact for body velocities v, vm.
-  subroutine sides2_local_velocities(c, v, vm, u)
+  !> u(:, k) = the local velocity of every contact for the bodies' velocities at
+  !> the beginning of the step (begin) or now.
+  subroutine sides2_local_velocities(c, bd, begin, u)
     type(contacts_t), intent(in) :: c
-    real(wp), intent(in) :: v(:, :), vm(:, :)
+    type(bodies2_t), intent(in) :: bd
+    logical, intent(in) :: begin
     real(wp), intent(inout) :: u(:, :)
     integer :: k
-    do k = 1, c%n
-      u(:, k) = contact_velocity(c, k, v, vm)
-    end do
+    if (begin) then
+      do k = 1, c%n
+        u(:, k) = contact_velocity(c, k, bd%rbdy2%vbegin, bd%mailx%vbegin)
+      end do
+    else
+      do k = 1, c%n
+        u(:, k) = contact_velocity(c, k, bd%rbdy2%v, bd%mailx%v)
+      end do
+    end if
   end subroutine sides2_local_velocities
 
+  !> The bodies back at their free velocities (a solve started again; the
+  !> meshes' velocities follow from the impulses at unpacking).
+  subroutine sides2_restart_velocities(bd)
+    type(bodies2_t), intent(in) :: bd
+    bd%rbdy2%v = bd%rbdy2%vfree
+  end subroutine sides2_restart_velocities
+
+  !> The number of bodies the packed rigid kernel's contacts index (c%cdb, c%anb).
+  pure integer function sides2_rigid_bodies(bd) result(n)
+    type(bodies2_t), intent(in) :: bd
+    n = bd%rbdy2%n
+  end function sides2_rigid_bodies
+
   !> The models' data of the step's contacts (meshes: active nodes, G = C H^T).
-  subroutine sides2_prepare(ws, c, m)
+  subroutine sides2_prepare(ws, c, bd)
     type(sides2_t), intent(inout) :: ws
     type(contacts_t), intent(in) :: c
-    type(mailx_t), intent(inout) :: m
-    if (c%with_mesh) call mesh2_pack_blocks(ws%mesh, m, c%n, c%cdm, c%anm, c%cdb, c%anb, c%mnode, c%mwt, c%frame)
+    type(bodies2_t), intent(in) :: bd
+    if (c%with_mesh) call mesh2_pack_blocks(ws%mesh, bd%mailx, c%n, c%cdm, c%anm, c%cdb, c%anb, c%mnode, c%mwt, c%frame)
   end subroutine sides2_prepare
 
   !> Contact k's Delassus block c%w(:, k) = sum over its sides of H M~^-1 H^T
   !> (rigid sides from the inverse masses and lever arms; meshed sides H G, with
   !> the cross terms of a contact of a body with itself).
-  subroutine sides2_delassus(ws, c, k, b)
+  subroutine sides2_delassus(ws, c, k, bd)
     type(sides2_t), intent(in) :: ws
     type(contacts_t), intent(inout) :: c
     integer, intent(in) :: k
-    type(rbdy2_t), intent(in) :: b
+    type(bodies2_t), intent(in) :: bd
     integer :: sd
     c%w(:, k) = 0.0_wp
     do sd = 1, 2
       select case (side_model(c, k, sd))
       case (bm_rigid)
-        call rigid2_add_delassus(b%inv_mass(:, side_body(c, k, sd)), c%frame(1, 2, k), c%frame(2, 2, k), &
+        call rigid2_add_delassus(bd%rbdy2%inv_mass(:, side_body(c, k, sd)), c%frame(1, 2, k), c%frame(2, 2, k), &
                                  c%lever(2 * sd - 1, k), c%lever(2 * sd, k), c%w(:, k))
       end select
     end do
@@ -149,32 +178,32 @@ contains
                               c%frame(:, 2, k), c%w(:, k))
   end subroutine sides2_delassus
 
-  !> Room for n contacts and the bodies of b in the workspace.
-  subroutine sides2_reserve(ws, n, b)
+  !> Room for n contacts and the bodies of bd in the workspace.
+  subroutine sides2_reserve(ws, n, bd)
     type(sides2_t), intent(inout) :: ws
     integer, intent(in) :: n
-    type(rbdy2_t), intent(in) :: b
+    type(bodies2_t), intent(in) :: bd
     call grow(ws%pidx, n)
     call grow(ws%pc, pk_size, n)
     call grow(ws%pb, 2, n)
     call grow(ws%pcoh, n)
     call grow(ws%pr, 2, n)
     call grow(ws%pst, n)
-    call rigid2_pack_reserve(ws%rigid, b)
+    call rigid2_pack_reserve(ws%rigid, bd%rbdy2)
   end subroutine sides2_reserve
 
   !> Free local velocities qfree = u(v) + shift, with the warm start of the rigid
   !> pairs added to the bodies contact by contact (each contact's qfree sees the
   !> impulses of the contacts before it, as it always has), and the velocity scale
   !> of the step from qfree and the rigid sides' free speeds.
-  subroutine sides2_begin_velocities(c, b, m, qfree, vscale)
+  subroutine sides2_begin_velocities(c, bd, qfree, vscale)
     type(contacts_t), intent(in) :: c
-    type(rbdy2_t), intent(inout) :: b
-    type(mailx_t), intent(in) :: m
+    type(bodies2_t), intent(in) :: bd
     real(wp), intent(inout) :: qfree(:, :)
     real(wp), intent(out) :: vscale
     integer :: k, sd
     real(wp) :: px, py
+    associate (b => bd%rbdy2, m => bd%mailx)
     do k = 1, c%n
       qfree(:, k) = contact_velocity(c, k, b%v, m%vfree) + c%shift(:, k)
       if (c%active(k) .and. rigid_pair(c, k)) then
@@ -196,6 +225,7 @@ contains
       end do
     end do
     if (c%n > 0) vscale = sqrt(vscale / c%n)
+    end associate
   end subroutine sides2_begin_velocities
 
   !> The bodies the active contacts touch into the workspace, in order of first
@@ -203,11 +233,10 @@ contains
   !> meshes: the contact-dof free velocities), then the warm-start impulses of the
   !> contacts of the mixed kernel on their sides (the rigid pairs' are in the
   !> bodies already: sides2_begin_velocities).
-  subroutine sides2_pack_bodies(ws, c, b, m)
+  subroutine sides2_pack_bodies(ws, c, bd)
     type(sides2_t), intent(inout) :: ws
     type(contacts_t), intent(in) :: c
-    type(rbdy2_t), intent(in) :: b
-    type(mailx_t), intent(in) :: m
+    type(bodies2_t), intent(in) :: bd
     integer :: k, sd, n
     n = c%n
     ws%rigid%n = 0
@@ -220,9 +249,9 @@ contains
         end select
       end do
     end do
-    call rigid2_pack_load(ws%rigid, b)
+    call rigid2_pack_load(ws%rigid, bd%rbdy2)
     if (.not. c%with_mesh) return
-    call mesh2_pack_load(ws%mesh, m, n, c%active, c%cdm, c%anm, c%cdb, c%anb)
+    call mesh2_pack_load(ws%mesh, bd%mailx, n, c%active, c%cdm, c%anm, c%cdb, c%anb)
     call grow(ws%gidx, n)
     call grow(ws%gside, 4, n)
     call grow(ws%ggm, 2, n)
@@ -349,18 +378,17 @@ contains
 
   !> The bodies' velocities from the workspace (rigid) and from the contact
   !> impulses (meshes: one solve per body; seconds its wall time).
-  subroutine sides2_unpack_bodies(ws, c, b, m, seconds)
+  subroutine sides2_unpack_bodies(ws, c, bd, seconds)
     type(sides2_t), intent(inout) :: ws
     type(contacts_t), intent(in) :: c
-    type(rbdy2_t), intent(inout) :: b
-    type(mailx_t), intent(inout) :: m
+    type(bodies2_t), intent(in) :: bd
     real(wp), intent(out) :: seconds
     integer(i8) :: t0, t1, rate
-    call rigid2_unpack(ws%rigid, b)
+    call rigid2_unpack(ws%rigid, bd%rbdy2)
     seconds = 0.0_wp
     if (.not. c%with_mesh) return
     call system_clock(t0, rate)
-    call mesh2_unpack(m, c%n, c%active, c%cdm, c%anm, c%mnode, c%mwt, c%frame, c%r)
+    call mesh2_unpack(bd%mailx, c%n, c%active, c%cdm, c%anm, c%mnode, c%mwt, c%frame, c%r)
     call system_clock(t1)
     seconds = real(t1 - t0, wp) / real(rate, wp)
   end subroutine sides2_unpack_bodies
