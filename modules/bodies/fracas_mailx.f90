@@ -17,16 +17,18 @@
 !> starts the step at its imposed value (run control driven_start).
 module fracas_mailx
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use fracas_kinds, only: wp, resolvable_length
+  use fracas_kinds, only: wp, ik, resolvable_length
+  use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset
   use fracas_errors, only: fatal, input_error, status_t, raise, failed
   use fracas_strings, only: itoa, rtoa, rtoa_list
   use fracas_energy, only: energy_terms_t
-  use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t, model_finite_strain
+  use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t, model_finite_strain, dof_record_t
   use fracas_drives, only: drive_t, drive_from_input, drive_value
-  use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, el_geometry_ok, el_area
+  use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, el_geometry_ok, el_area, &
+                             el_vtk_type
   use fracas_bulk, only: bulk_t, bulk_j2, bulk_j2_finite, bulk_elastic, plane_strain, &
                          plane_stress, plane_axisym, gp_size, bulk_from_material, &
-                         gp_pxx, gp_pzz, gp_p, gp_stress, gp_strain, gp_plastic_strain
+                         gp_pxx, gp_pzz, gp_p, gp_stress, gp_strain, gp_plastic_strain, plane_names
   use fracas_sparse, only: sparse_t, sparse_from_triplets, sparse_matvec
   use fracas_linear_solver, only: factor_t, factor_build, factor_update, factor_solve, factor_free, &
                                   factor_method_name, dense_spd_inverse
@@ -35,7 +37,8 @@ module fracas_mailx
   public :: mailx_t, mailx_build, mailx_free, mailx_save_state, mailx_restore_state, mailx_set_time_step, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
-            mailx_dense_max, mailx_gauss_values, mailx_radius, mailx_energy_terms, mailx_fault
+            mailx_dense_max, mailx_gauss_values, mailx_radius, mailx_energy_terms, mailx_fault, &
+            mailx_dof_records, mailx_write_static, mailx_write_snapshot
 
   !> Bodies with at most this many dofs keep a dense inverse of A_ff (exploded
   !> elements, small meshes: the inverse is the contact compliance); larger
@@ -1287,6 +1290,64 @@ contains
       s = s//'; and '//trim(buf)//' more sparse bodies'
     end if
   end function mailx_solver_summary
+
+  !> The bodies' records of DOF.OUT (LMGC90's MAILx blocks: every node's
+  !> displacement and velocity).
+  function mailx_dof_records(m) result(dofs)
+    type(mailx_t), intent(in) :: m
+    type(dof_record_t) :: dofs(m%n)
+    integer :: k, it
+    do k = 1, m%n
+      associate (d => dofs(k), i1 => m%node_first(k), i2 => m%node_first(k + 1) - 1)
+        d%model = 'MAILx'
+        d%body = k
+        d%nodes = [(it, it=1, i2 - i1 + 1)]
+        d%node_x = m%x(:, i1:i2)
+        d%node_v = m%v(:, i1:i2)
+      end associate
+    end do
+  end function mailx_dof_records
+
+  !> The meshes' fixed description into the open group g of fracas.h5 (/mesh):
+  !> reference node coordinates, node and element ranges of each body, element
+  !> kinds (VTK cell types), connectivity (1-based mesh node numbers), materials.
+  subroutine mailx_write_static(m, g)
+    type(mailx_t), intent(in) :: m
+    integer(hid_t), intent(in) :: g
+    integer :: e
+    integer(ik), allocatable :: vtk(:)
+    allocate (vtk(m%nelem))
+    do e = 1, m%nelem
+      vtk(e) = int(el_vtk_type(m%el_kind(e)), ik)
+    end do
+    call h5_write_attr(g, 'plane', plane_names(m%plane))
+    call h5_write_attr(g, 'gauss_point_fields', 'sxx syy sxy szz exx eyy gxy ezz pxx pyy pgxy pzz p')
+    call h5_write_dataset(g, 'reference', m%ref)
+    call h5_write_dataset(g, 'body_first_node', int(m%node_first, ik))
+    call h5_write_dataset(g, 'body_first_element', int(m%elem_first, ik))
+    call h5_write_dataset(g, 'element_vtk_type', vtk)
+    call h5_write_dataset(g, 'element_first_node', int(m%el_first, ik))
+    call h5_write_dataset(g, 'element_nodes', int(m%el_nodes, ik))
+    call h5_write_dataset(g, 'element_first_gauss_point', int(m%el_gp, ik))
+    call h5_write_dataset(g, 'element_material', int(m%el_mat, ik))
+  end subroutine mailx_write_static
+
+  !> The meshes' state into the open snapshot group g: nodal displacements and
+  !> velocities (2, nodes), the force of the velocity drives on their nodes
+  !> (2, nodes; when some dof is driven), Gauss-point states (13, Gauss points:
+  !> stress, strain, plastic strain, p; see /mesh/gauss_point_fields).
+  subroutine mailx_write_snapshot(m, g)
+    type(mailx_t), intent(in) :: m
+    integer(hid_t), intent(in) :: g
+    real(wp), allocatable :: gp(:, :)
+    allocate (gp(size(m%gp, 1), size(m%gp, 2)))
+    call mailx_gauss_values(m, gp)
+    call h5_write_dataset(g, 'mesh_X', m%x)
+    call h5_write_dataset(g, 'mesh_V', m%v)
+    ! Force of the velocity drives on their nodes (reactions; zero on free dofs).
+    if (any(m%driven)) call h5_write_dataset(g, 'mesh_F_support', m%fsupport)
+    call h5_write_dataset(g, 'mesh_gauss_points', gp)
+  end subroutine mailx_write_snapshot
 
   !> The model's terms of the energy audit.
   pure type(energy_terms_t) function mailx_energy_terms(m) result(e)

@@ -7,14 +7,14 @@ module fracas_rbdy2
   use fracas_strings, only: itoa, rtoa, rtoa_list
   use fracas_energy, only: energy_terms_t
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use fracas_deck, only: driven_dof_input_t
+  use fracas_deck, only: driven_dof_input_t, dof_record_t
   use fracas_errors, only: input_error
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   implicit none
   private
   public :: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_add_step_work, rbdy2_begin_step, &
             rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy, rbdy2_energy_terms, rbdy2_fault, &
-            rbdy2_point_speed, rbdy2_save_state, rbdy2_restore_state
+            rbdy2_point_speed, rbdy2_save_state, rbdy2_restore_state, rbdy2_dof_records
 
 
   type :: rbdy2_t
@@ -149,6 +149,19 @@ contains
     end do
     b%work_supports = b%work_supports + (-0.5_wp * sum(imp * (b%v + b%vbegin), mask=b%driven))
   end subroutine rbdy2_add_step_work
+
+  !> The bodies' records of DOF.OUT (LMGC90's RBDY2 blocks: x, v).
+  pure function rbdy2_dof_records(b) result(dofs)
+    type(rbdy2_t), intent(in) :: b
+    type(dof_record_t) :: dofs(b%n)
+    integer :: k
+    do k = 1, b%n
+      dofs(k)%model = 'RBDY2'     ! set, not left to the result's default initialisation
+      dofs(k)%body = b%number(k)
+      dofs(k)%x = b%x(:, k)
+      dofs(k)%v = b%v(:, k)
+    end do
+  end function rbdy2_dof_records
 
   !> The bodies' end-of-step state for a restart point: positions x, velocities
   !> v and the audit's work terms (gravity, forces, supports).
