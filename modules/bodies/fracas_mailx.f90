@@ -19,6 +19,7 @@ module fracas_mailx
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_kinds, only: wp, ik, resolvable_length
   use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset
+  use fracas_restart_h5, only: restart_state_t, restart_bad, restart_check_real1, restart_check_real2
   use fracas_errors, only: fatal, input_error, status_t, raise, failed
   use fracas_strings, only: itoa, rtoa, rtoa_list
   use fracas_energy, only: energy_terms_t
@@ -34,7 +35,7 @@ module fracas_mailx
                                   factor_method_name, dense_spd_inverse
   implicit none
   private
-  public :: mailx_t, mailx_build, mailx_free, mailx_save_state, mailx_restore_state, mailx_set_time_step, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
+  public :: mailx_t, mailx_build, mailx_free, mailx_save_state, mailx_restore_state, mailx_check_restart, mailx_set_time_step, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
             mailx_dense_max, mailx_gauss_values, mailx_radius, mailx_energy_terms, mailx_fault, &
@@ -1035,6 +1036,21 @@ contains
     fint = m%fint
     energies = [m%kinetic0, m%work_gravity, m%work_forces, m%work_supports, m%plastic_work]
   end subroutine mailx_save_state
+
+  !> The meshes' datasets of a restart point read from a file (mesh/X, V, gp, fint,
+  !> energies): shapes and finite values, before any is used.
+  subroutine mailx_check_restart(m, st)
+    type(mailx_t), intent(in) :: m
+    type(restart_state_t), intent(in) :: st
+    call restart_check_real2(st, 'mesh/X', st%mesh_x, 2, m%nnodes)
+    call restart_check_real2(st, 'mesh/V', st%mesh_v, 2, m%nnodes)
+    call restart_check_real2(st, 'mesh/gp', st%mesh_gp, gp_size, m%ngp)
+    ! Gauss-point values are squared (von Mises, energies): beyond sqrt(huge) they overflow.
+    if (any(abs(st%mesh_gp) > sqrt(huge(1.0_wp)))) call restart_bad(st, 'mesh/gp', 'a value beyond '// &
+      rtoa(sqrt(huge(1.0_wp)))//' (its square overflows double precision)')
+    call restart_check_real2(st, 'mesh/fint', st%mesh_fint, 2, m%nnodes)
+    call restart_check_real1(st, 'mesh/energies', st%mesh_energies, 5)
+  end subroutine mailx_check_restart
 
   !> Put the meshes into a saved end-of-step state (exact restart): nodal
   !> displacements x and velocities v, Gauss-point states gp, internal forces

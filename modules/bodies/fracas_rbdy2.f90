@@ -8,13 +8,14 @@ module fracas_rbdy2
   use fracas_energy, only: energy_terms_t
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_deck, only: driven_dof_input_t, dof_record_t
+  use fracas_restart_h5, only: restart_state_t, restart_check_real2
   use fracas_errors, only: input_error
   use fracas_drives, only: drive_t, drive_from_input, drive_value
   implicit none
   private
   public :: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_add_step_work, rbdy2_begin_step, &
             rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy, rbdy2_energy_terms, rbdy2_fault, &
-            rbdy2_point_speed, rbdy2_save_state, rbdy2_restore_state, rbdy2_dof_records
+            rbdy2_point_speed, rbdy2_save_state, rbdy2_restore_state, rbdy2_check_restart, rbdy2_dof_records
 
 
   type :: rbdy2_t
@@ -173,6 +174,15 @@ contains
     v = b%v
     work = [b%work_gravity, b%work_forces, b%work_supports]
   end subroutine rbdy2_save_state
+
+  !> The bodies' datasets of a restart point read from a file (X, V): shapes and
+  !> finite values, before any is used (the run stops naming the dataset).
+  subroutine rbdy2_check_restart(b, st)
+    type(rbdy2_t), intent(in) :: b
+    type(restart_state_t), intent(in) :: st
+    call restart_check_real2(st, 'X', st%x, 3, b%n)
+    call restart_check_real2(st, 'V', st%v, 3, b%n)
+  end subroutine rbdy2_check_restart
 
   !> Put the bodies into a state rbdy2_save_state took: the end of that step is
   !> the beginning of the next (rbdy2_end_step).
