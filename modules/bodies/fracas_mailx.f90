@@ -17,24 +17,29 @@
 !> starts the step at its imposed value (run control driven_start).
 module fracas_mailx
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use fracas_kinds, only: wp
+  use fracas_kinds, only: wp, ik, resolvable_length
+  use fracas_h5, only: hid_t, h5_write_attr, h5_write_dataset
+  use fracas_restart_h5, only: restart_state_t, restart_bad, restart_check_real1, restart_check_real2
   use fracas_errors, only: fatal, input_error, status_t, raise, failed
-  use fracas_strings, only: itoa, rtoa
-  use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t, model_finite_strain
+  use fracas_strings, only: itoa, rtoa, rtoa_list
+  use fracas_energy, only: energy_terms_t
+  use fracas_deck, only: deck_t, element_input_t, model_input_t, source_t, model_finite_strain, dof_record_t
   use fracas_drives, only: drive_t, drive_from_input, drive_value
-  use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, el_geometry_ok, el_area
+  use fracas_elements, only: el_kind_of, el_nnodes, el_ngauss, el_mass, el_response, el_geometry_ok, el_area, &
+                             el_vtk_type
   use fracas_bulk, only: bulk_t, bulk_j2, bulk_j2_finite, bulk_elastic, plane_strain, &
                          plane_stress, plane_axisym, gp_size, bulk_from_material, &
-                         gp_pxx, gp_pzz, gp_p
+                         gp_pxx, gp_pzz, gp_p, gp_stress, gp_strain, gp_plastic_strain, plane_names
   use fracas_sparse, only: sparse_t, sparse_from_triplets, sparse_matvec
   use fracas_linear_solver, only: factor_t, factor_build, factor_update, factor_solve, factor_free, &
                                   factor_method_name, dense_spd_inverse
   implicit none
   private
-  public :: mailx_t, mailx_build, mailx_free, mailx_restore_state, mailx_set_time_step, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
+  public :: mailx_t, mailx_build, mailx_free, mailx_save_state, mailx_restore_state, mailx_check_restart, mailx_set_time_step, mailx_begin_step, mailx_iterate, mailx_detection_coor, &
             mailx_velocity_from_impulses, mailx_converged, mailx_end_step, mailx_kinetic_energy, &
             mailx_require_compliance, mailx_compliance_columns, mailx_contact_set, mailx_contact_dofs, mailx_set_contact_hint, mailx_solver_summary, &
-            mailx_dense_max, mailx_gauss_values, mailx_radius
+            mailx_dense_max, mailx_gauss_values, mailx_radius, mailx_energy_terms, mailx_fault, &
+            mailx_dof_records, mailx_write_static, mailx_write_snapshot
 
   !> Bodies with at most this many dofs keep a dense inverse of A_ff (exploded
   !> elements, small meshes: the inverse is the contact compliance); larger
@@ -1020,6 +1025,33 @@ contains
     end subroutine residual_at_end
   end subroutine mailx_end_step
 
+  !> The meshes' end-of-step state for a restart point (what mailx_restore_state
+  !> takes back).
+  subroutine mailx_save_state(m, x, v, gp, fint, energies)
+    type(mailx_t), intent(in) :: m
+    real(wp), allocatable, intent(out) :: x(:, :), v(:, :), gp(:, :), fint(:, :), energies(:)
+    x = m%x
+    v = m%v
+    gp = m%gp
+    fint = m%fint
+    energies = [m%kinetic0, m%work_gravity, m%work_forces, m%work_supports, m%plastic_work]
+  end subroutine mailx_save_state
+
+  !> The meshes' datasets of a restart point read from a file (mesh/X, V, gp, fint,
+  !> energies): shapes and finite values, before any is used.
+  subroutine mailx_check_restart(m, st)
+    type(mailx_t), intent(in) :: m
+    type(restart_state_t), intent(in) :: st
+    call restart_check_real2(st, 'mesh/X', st%mesh_x, 2, m%nnodes)
+    call restart_check_real2(st, 'mesh/V', st%mesh_v, 2, m%nnodes)
+    call restart_check_real2(st, 'mesh/gp', st%mesh_gp, gp_size, m%ngp)
+    ! Gauss-point values are squared (von Mises, energies): beyond sqrt(huge) they overflow.
+    if (any(abs(st%mesh_gp) > sqrt(huge(1.0_wp)))) call restart_bad(st, 'mesh/gp', 'a value beyond '// &
+      rtoa(sqrt(huge(1.0_wp)))//' (its square overflows double precision)')
+    call restart_check_real2(st, 'mesh/fint', st%mesh_fint, 2, m%nnodes)
+    call restart_check_real1(st, 'mesh/energies', st%mesh_energies, 5)
+  end subroutine mailx_check_restart
+
   !> Put the meshes into a saved end-of-step state (exact restart): nodal
   !> displacements x and velocities v, Gauss-point states gp, internal forces
   !> fint, and the energy accumulators energies = [kinetic0, work_gravity,
@@ -1274,4 +1306,152 @@ contains
       s = s//'; and '//trim(buf)//' more sparse bodies'
     end if
   end function mailx_solver_summary
+
+  !> The bodies' records of DOF.OUT (LMGC90's MAILx blocks: every node's
+  !> displacement and velocity).
+  function mailx_dof_records(m) result(dofs)
+    type(mailx_t), intent(in) :: m
+    type(dof_record_t) :: dofs(m%n)
+    integer :: k, it
+    do k = 1, m%n
+      associate (d => dofs(k), i1 => m%node_first(k), i2 => m%node_first(k + 1) - 1)
+        d%model = 'MAILx'
+        d%body = k
+        d%nodes = [(it, it=1, i2 - i1 + 1)]
+        d%node_x = m%x(:, i1:i2)
+        d%node_v = m%v(:, i1:i2)
+      end associate
+    end do
+  end function mailx_dof_records
+
+  !> The meshes' fixed description into the open group g of fracas.h5 (/mesh):
+  !> reference node coordinates, node and element ranges of each body, element
+  !> kinds (VTK cell types), connectivity (1-based mesh node numbers), materials.
+  subroutine mailx_write_static(m, g)
+    type(mailx_t), intent(in) :: m
+    integer(hid_t), intent(in) :: g
+    integer :: e
+    integer(ik), allocatable :: vtk(:)
+    allocate (vtk(m%nelem))
+    do e = 1, m%nelem
+      vtk(e) = int(el_vtk_type(m%el_kind(e)), ik)
+    end do
+    call h5_write_attr(g, 'plane', plane_names(m%plane))
+    call h5_write_attr(g, 'gauss_point_fields', 'sxx syy sxy szz exx eyy gxy ezz pxx pyy pgxy pzz p')
+    call h5_write_dataset(g, 'reference', m%ref)
+    call h5_write_dataset(g, 'body_first_node', int(m%node_first, ik))
+    call h5_write_dataset(g, 'body_first_element', int(m%elem_first, ik))
+    call h5_write_dataset(g, 'element_vtk_type', vtk)
+    call h5_write_dataset(g, 'element_first_node', int(m%el_first, ik))
+    call h5_write_dataset(g, 'element_nodes', int(m%el_nodes, ik))
+    call h5_write_dataset(g, 'element_first_gauss_point', int(m%el_gp, ik))
+    call h5_write_dataset(g, 'element_material', int(m%el_mat, ik))
+  end subroutine mailx_write_static
+
+  !> The meshes' state into the open snapshot group g: nodal displacements and
+  !> velocities (2, nodes), the force of the velocity drives on their nodes
+  !> (2, nodes; when some dof is driven), Gauss-point states (13, Gauss points:
+  !> stress, strain, plastic strain, p; see /mesh/gauss_point_fields).
+  subroutine mailx_write_snapshot(m, g)
+    type(mailx_t), intent(in) :: m
+    integer(hid_t), intent(in) :: g
+    real(wp), allocatable :: gp(:, :)
+    allocate (gp(size(m%gp, 1), size(m%gp, 2)))
+    call mailx_gauss_values(m, gp)
+    call h5_write_dataset(g, 'mesh_X', m%x)
+    call h5_write_dataset(g, 'mesh_V', m%v)
+    ! Force of the velocity drives on their nodes (reactions; zero on free dofs).
+    if (any(m%driven)) call h5_write_dataset(g, 'mesh_F_support', m%fsupport)
+    call h5_write_dataset(g, 'mesh_gauss_points', gp)
+  end subroutine mailx_write_snapshot
+
+  !> The model's terms of the energy audit.
+  pure type(energy_terms_t) function mailx_energy_terms(m) result(e)
+    type(mailx_t), intent(in) :: m
+    e%work_gravity = m%work_gravity
+    e%work_forces = m%work_forces
+    e%work_supports = m%work_supports
+    e%elastic = m%elastic
+    e%plastic = m%plastic_work
+  end function mailx_energy_terms
+
+  !> The state check of the meshed bodies after a step of length h: '' if
+  !> sound, else what is wrong, naming the body (by rank), node or Gauss point:
+  !> a non-finite node or Gauss-point state, a node beyond what double precision
+  !> resolves at its body's size (mailx_radius), in place or in one step, or an
+  !> overflowed energy audit.
+  function mailx_fault(m, h) result(msg)
+    type(mailx_t), intent(in) :: m
+    real(wp), intent(in) :: h
+    character(len=:), allocatable :: msg
+    integer :: k, ib
+    real(wp) :: lim, pos, moved
+    msg = ''
+    if (m%nnodes == 0) return
+    if (.not. (all(ieee_is_finite(m%x)) .and. all(ieee_is_finite(m%v)))) then
+      do k = 1, m%nnodes
+        if (.not. (all(ieee_is_finite(m%x(:, k))) .and. all(ieee_is_finite(m%v(:, k))))) then
+          msg = 'MAILx body '//itoa(m%node_body(k))//' has a non-finite displacement or velocity at node '// &
+                itoa(k - m%node_first(m%node_body(k)) + 1)//' (X '//rtoa_list(m%x(:, k))//', V '// &
+                rtoa_list(m%v(:, k))//')'
+          return
+        end if
+      end do
+    end if
+    if (.not. all(ieee_is_finite(m%gp))) then
+      msg = gauss_point_fault()
+      return
+    end if
+    do ib = 1, m%n
+      lim = resolvable_length(mailx_radius(m, ib))
+      do k = m%node_first(ib), m%node_first(ib + 1) - 1
+        pos = maxval(abs(m%ref(:, k) + m%x(:, k)))
+        moved = h * maxval(abs(m%v(:, k)))
+        if (pos > lim) then
+          msg = 'MAILx body '//itoa(ib)//' ran away: node '//itoa(k - m%node_first(ib) + 1)//' is at '// &
+                rtoa(pos)//' from the origin (displacement '//rtoa_list(m%x(:, k))//'), beyond '//rtoa(lim)// &
+                ' (what double precision resolves at the body''s size, '//rtoa(mailx_radius(m, ib))//')'
+          return
+        end if
+        if (moved > lim) then
+          msg = 'MAILx body '//itoa(ib)//' ran away: the velocity of node '//itoa(k - m%node_first(ib) + 1)// &
+                ' ('//rtoa_list(m%v(:, k))//') moves it by '//rtoa(moved)//' in one step, beyond '//rtoa(lim)// &
+                ' (what double precision resolves at the body''s size, '//rtoa(mailx_radius(m, ib))//')'
+          return
+        end if
+      end do
+    end do
+    if (.not. all(ieee_is_finite([m%elastic, m%plastic_work, m%work_gravity, m%work_forces, m%work_supports]))) then
+      msg = 'the energy audit of the meshes overflowed (elastic '//rtoa(m%elastic)//', plastic work '// &
+            rtoa(m%plastic_work)//', work of supports '//rtoa(m%work_supports)//')'
+      return
+    end if
+
+  contains
+
+    !> The first Gauss point with a non-finite state: body, element, point and quantity.
+    function gauss_point_fault() result(s)
+      character(len=:), allocatable :: s
+      integer :: b, e, g
+      character(len=*), parameter :: names(4) = [character(len=26) :: 'stress', 'strain', 'plastic strain', &
+                                                 'cumulative plastic strain']
+      integer, parameter :: first(4) = [gp_stress, gp_strain, gp_plastic_strain, gp_p]
+      integer :: q
+      s = 'a MAILx body has a non-finite Gauss-point state'
+      do b = 1, m%n
+        do e = m%elem_first(b), m%elem_first(b + 1) - 1
+          do g = m%el_gp(e), m%el_gp(e + 1) - 1
+            if (all(ieee_is_finite(m%gp(:, g)))) cycle
+            do q = 4, 1, -1
+              if (.not. all(ieee_is_finite(m%gp(first(q):merge(first(q), first(q) + 3, q == 4), g)))) &
+                s = 'MAILx body '//itoa(b)//' has a non-finite '//trim(names(q))//' at Gauss point '// &
+                    itoa(g - m%el_gp(e) + 1)//' of its element '//itoa(e - m%elem_first(b) + 1)//' ('// &
+                    rtoa_list(m%gp(first(q):merge(first(q), first(q) + 3, q == 4), g))//')'
+            end do
+            return
+          end do
+        end do
+      end do
+    end function gauss_point_fault
+  end function mailx_fault
 end module fracas_mailx

@@ -23,7 +23,8 @@
 module fracas_restart_h5
   use fracas_kinds, only: wp, ik, i8
   use fracas_errors, only: fatal
-  use fracas_strings, only: itoa
+  use fracas_strings, only: itoa, rtoa
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_files, only: file_exists
   use fracas_h5, only: hid_t, h5_open_file, h5_close_file, h5_create_group, h5_open_group, &
                        h5_close_group, h5_exists, h5_write_attr, h5_read_attr, h5_has_attr, &
@@ -31,6 +32,7 @@ module fracas_restart_h5
   implicit none
   private
   public :: restart_state_t, restart_h5_write, restart_h5_read, n_energies, energy_names
+  public :: restart_bad, restart_check_real1, restart_check_real2
 
   integer, parameter :: n_energies = 7
   character(len=*), parameter :: energy_names = 'kinetic0,work_gravity,work_forces,work_supports,' // &
@@ -210,4 +212,46 @@ contains
     call h5_close_group(groot)
     call h5_close_file(fid)
   end subroutine restart_h5_read
+
+  ! Checks of a restart point's datasets before any is used (fracas_restart's
+  ! validate_point and the body models' *_check_restart): an error names the dataset,
+  ! 'PATH:/restart/<step>/<dataset>: what'.
+
+  !> Stop the run: dataset (or the point itself, '') of st is not what the deck needs.
+  subroutine restart_bad(st, dataset, what)
+    type(restart_state_t), intent(in) :: st
+    character(len=*), intent(in) :: dataset, what
+    if (len(dataset) > 0) then
+      call fatal('restart point '//st%where//'/'//dataset//': '//what)
+    else
+      call fatal('restart point '//st%where//': '//what)
+    end if
+  end subroutine restart_bad
+
+  !> n finite values.
+  subroutine restart_check_real1(st, dataset, a, n)
+    type(restart_state_t), intent(in) :: st
+    character(len=*), intent(in) :: dataset
+    real(wp), intent(in) :: a(:)
+    integer, intent(in) :: n
+    integer :: i
+    if (size(a) /= n) call restart_bad(st, dataset, itoa(size(a))//' values, expected '//itoa(n))
+    do i = 1, n
+      if (.not. ieee_is_finite(a(i))) call restart_bad(st, dataset, 'value '//itoa(i)//' is '//rtoa(a(i)))
+    end do
+  end subroutine restart_check_real1
+
+  !> Shape (n1, n2) (h5py shows (n2, n1)), finite rows.
+  subroutine restart_check_real2(st, dataset, a, n1, n2)
+    type(restart_state_t), intent(in) :: st
+    character(len=*), intent(in) :: dataset
+    real(wp), intent(in) :: a(:, :)
+    integer, intent(in) :: n1, n2
+    integer :: j
+    if (size(a, 1) /= n1 .or. size(a, 2) /= n2) call restart_bad(st, dataset, 'shape ('//itoa(size(a, 2))//', '// &
+      itoa(size(a, 1))//') as h5py shows it, expected ('//itoa(n2)//', '//itoa(n1)//')')
+    do j = 1, n2
+      if (.not. all(ieee_is_finite(a(:, j)))) call restart_bad(st, dataset, 'row '//itoa(j - 1)//' (from 0) is not finite')
+    end do
+  end subroutine restart_check_real2
 end module fracas_restart_h5

@@ -3,7 +3,7 @@ module fracas_strings
   use fracas_kinds, only: wp, i8
   implicit none
   private
-  public :: itoa, rtoa, lower, upper
+  public :: itoa, rtoa, rtoa_list, lower, upper
 
   !> An integer (default or 64-bit) without blanks: 42 -> '42'.
   interface itoa
@@ -41,6 +41,18 @@ contains
     end if
     s = trim(adjustl(buf))
   end function rtoa
+
+  !> '(a, b, c)' in short form (rtoa of each, comma separated).
+  function rtoa_list(x) result(s)
+    real(wp), intent(in) :: x(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ''
+    do i = 1, size(x)
+      if (i > 1) s = s//', '
+      s = s//rtoa(x(i))
+    end do
+  end function rtoa_list
 
   pure function lower(s) result(r)
     character(len=*), intent(in) :: s

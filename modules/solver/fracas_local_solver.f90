@@ -3,7 +3,7 @@
 module fracas_local_solver
   use fracas_kinds, only: wp
   use fracas_small_matrix, only: adjugate_3x3
-  use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw
+  use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw, bm_rigid, bm_mesh
   use fracas_contact_laws, only: coh_factor, coh_uend, coh_av, coh_k, coh_wprime
   use fracas_contacts, only: wi_size, mesh_side_nodes
   implicit none
@@ -301,7 +301,7 @@ contains
   !> One Gauss–Seidel sweep over contacts with a meshed side (sweep order), in
   !> exchange with the bodies after each contact like the rigid kernel:
   !>   cr(pk_size, n) packed records as gs_sweep_2d_packed (levers of rigid sides);
-  !>   side(4, n): per side s (cd then an), side(2s-1) = 1 rigid / 2 meshed and
+  !>   side(4, n): per side s (cd then an), side(2s-1) = its model (bm_rigid, bm_mesh) and
   !>     side(2s) its place: the body's slot in bv (rigid) or the offset of its
   !>     G block in gmat (meshed); gm(2, n) and goff: see below;
   !>   slot(4, n): index in mv of the x velocity of the two nodes of each meshed
@@ -331,7 +331,7 @@ contains
       n1 = cr(1, k); n2 = cr(2, k)
       ! Relative velocity of the contact point: candidate minus antagonist
       ! (the antagonist's weights carry the minus sign).
-      if (side(1, k) == 2 .and. side(3, k) == 2) then
+      if (side(1, k) == bm_mesh .and. side(3, k) == bm_mesh) then
         ! (mesh, mesh): the four weighted node velocities of mesh2_add_node in
         ! one expression (the same sum; 1 % fewer instructions in this kernel)
         vx = wt(1, k) * mv(slot(1, k)) + wt(2, k) * mv(slot(2, k)) + wt(3, k) * mv(slot(3, k)) + &
@@ -343,7 +343,7 @@ contains
         vx = 0.0_wp; vy = 0.0_wp
         ut = 0.0_wp; un = 0.0_wp
         do s = 1, 2
-          if (side(2 * s - 1, k) == 1) then
+          if (side(2 * s - 1, k) == bm_rigid) then
             a = side(2 * s, k)
             sgn = merge(1.0_wp, -1.0_wp, s == 1)
             call rigid2_add_velocity(sgn, bv(1:3, a), cr(2 * s + 1:2 * s + 2, k), vx, vy, ut, un)
@@ -365,7 +365,7 @@ contains
       drt = rt - rt0; drn = rn - rn0
       if (drt == 0.0_wp .and. drn == 0.0_wp) cycle
       do s = 1, 2
-        if (side(2 * s - 1, k) == 1) then
+        if (side(2 * s - 1, k) == bm_rigid) then
           sgn = merge(1.0_wp, -1.0_wp, s == 1)
           call rigid2_side_impulse(bv(:, side(2 * s, k)), sgn, n1, n2, cr(2 * s + 1:2 * s + 2, k), drt, drn)
         else

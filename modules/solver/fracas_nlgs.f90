@@ -10,20 +10,19 @@
 !> computed too.
 module fracas_nlgs
   use fracas_kinds, only: wp, i8
-  use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw, st_cnctc, st_cstck, st_cslfw, st_cslbw, &
-                        bm_rigid, bm_mesh
+  use fracas_ids, only: st_noctc, st_stick, st_slifw, st_slibw, st_cnctc, st_cstck, st_cslfw, st_cslbw
   use fracas_random, only: rng_t, rng_seed, rng_permute
-  use fracas_rbdy2, only: rbdy2_t
-  use fracas_mailx, only: mailx_t, mailx_require_compliance, mailx_compliance_columns, &
-                          mailx_contact_dofs, &
-                          mailx_velocity_from_impulses
-  use fracas_contacts, only: contacts_t, mesh_side_nodes
+  use fracas_contacts, only: contacts_t
   use fracas_contact_laws, only: law_t, law_local_problem, law_czm, cohesive_elimination, coh_size, coh_law, &
                                  coh_factor, coh_released, coh_u0, coh_h, coh_prev, coh_uend, coh_bracket, coh_wprime, &
                                  coh_av, coh_k, cohesive_end_jump, n_internals, int_jump, int_beta, int_tps
   use fracas_czm, only: czm_t, czm_beta_update, czm_stored_energy, czm_step_dissipation, czm_step_factor, &
                         czm_beta_power, czm_softening_length
-  use fracas_local_solver, only: gs_sweep_2d_packed, gs_sweep_mesh, pk_size, natural_map_2d, inverse_block
+  use fracas_local_solver, only: natural_map_2d, inverse_block
+  use fracas_sides_2d, only: bodies2_t, sides2_t, contact_velocity, rigid_pair, sides2_restart_velocities, &
+                             sides2_rigid_bodies, sides2_prepare, sides2_delassus, &
+                             sides2_begin_velocities, sides2_reserve, sides2_pack_bodies, sides2_pack_contacts, &
+                             sides2_unpack_contacts, sides2_sweep, sides2_unpack_bodies, sides2_local_velocities
   use fracas_lmgc_norms, only: lmgc_norms_t, lmgc_norms
   use fracas_grow, only: grow
   use fracas_errors, only: fatal, itoa
@@ -66,55 +65,19 @@ module fracas_nlgs
   end type nlgs_report_t
 
   !> Solver state kept between steps (random stream, work arrays). The sweeps
-  !> run on packed copies (gs_sweep_2d_packed), built once per step (per block
-  !> of sweeps in shuffled order): the active contacts in sweep order, and the
-  !> bodies they touch, numbered in order of first appearance in the stored
-  !> (detection, i.e. cell) order so that neighbours are close in memory. The
-  !> numbering is internal: the bodies and contacts keep theirs.
+  !> run on packed copies of the active contacts and of the bodies they touch
+  !> (ws: each body model's part and each kernel's records, fracas_sides_2d),
+  !> built once per step (per block of sweeps in shuffled order).
   type :: nlgs_t
     type(nlgs_settings_t) :: s
     type(rng_t) :: rng
     type(czm_t), allocatable :: cz(:)      !< the cohesive part of each law (index: c%law)
     integer, allocatable :: order(:)
     real(wp), allocatable :: qfree(:, :)   !< (2,n) free local velocity incl. law shift
-    integer :: np = 0                      !< active contacts (packed)
-    logical :: any_coh = .false.           !< some packed contact is cohesive
-    integer, allocatable :: pidx(:)        !< (np) contact of each packed slot
-    real(wp), allocatable :: pc(:, :)      !< (pk_size,np) contact records
-    integer, allocatable :: pb(:, :)       !< (2,np) bodies, as slots of bv
-    integer, allocatable :: pcoh(:)        !< (np) column of c%coh (0: not cohesive)
-    real(wp), allocatable :: pr(:, :)      !< (2,np) impulses
-    integer, allocatable :: pst(:)         !< (np) statuses
-    integer :: nbp = 0                     !< bodies touched by active contacts
-    integer, allocatable :: bslot(:)       !< (nb) slot in bv of each body (0: none)
-    integer, allocatable :: blist(:)       !< (nbp) body of each slot
-    real(wp), allocatable :: bv(:, :)      !< (6,nbp) velocity and inverse mass
-    ! Contacts with a meshed side (see gs_sweep_mesh): G blocks of the step
-    ! (offset goff(s,k) and dofs gm(s,k) of side s of contact k), the packed
-    ! records in sweep order and the contact-dof velocities mv of the meshed
-    ! bodies (body b's from moff(b)+1, -1 if none).
-    real(wp), allocatable :: gmat(:)
-    integer, allocatable :: goff(:, :), gm(:, :)
-    integer :: ng = 0
-    integer, allocatable :: gidx(:), gside(:, :), ggm(:, :), gfirst(:, :), gslot(:, :), gcoh(:), gst(:)
-    real(wp), allocatable :: gc(:, :), gwt(:, :), gr(:, :)
-    integer, allocatable :: moff(:)
-    real(wp), allocatable :: mv(:)
-    ! The step's active nodes of each meshed body: a dense body's are all its
-    ! nodes, a large body's the nodes its contacts touch (its cached compliance
-    ! may cover more); anodes(abase(b)+1 .. abase(b)+nact(b)), aslot(node) the
-    ! node's place in its body's list (0: none).
-    integer, allocatable :: nact(:), abase(:), anodes(:), aslot(:)
+    type(sides2_t) :: ws                   !< the sweep kernels' workspace
   end type nlgs_t
 
 contains
-
-  ! The body models' contact sides, included (as in fracas_local_solver) so that the
-  ! per-contact loops here inline them: contact_velocity runs for every contact
-  ! twice per solve, and out of line it cost 2 % of deposit_1000's solve time.
-  include '../shared/frame_2d.inc'
-  include '../bodies/rbdy2_side.inc'
-  include '../bodies/mailx_side.inc'
 
   subroutine nlgs_init(solver, settings)
     type(nlgs_t), intent(out) :: solver
@@ -122,28 +85,6 @@ contains
     solver%s = settings
     call rng_seed(solver%rng, settings%seed)
   end subroutine nlgs_init
-
-  !> Relative velocity (t, n) at contact k for rigid body velocities v and
-  !> mesh node velocities vm.
-  pure function contact_velocity(c, k, v, vm) result(u)
-    type(contacts_t), intent(in) :: c
-    integer, intent(in) :: k
-    real(wp), intent(in) :: v(:, :), vm(:, :)
-    real(wp) :: u(2), dv(2)
-    if (c%cdm(k) == bm_rigid) then
-      dv = v(1:2, c%cdb(k))
-    else
-      dv = mesh2_point_velocity(vm(:, c%mnode(1, k)), vm(:, c%mnode(2, k)), c%mwt(1, k), c%mwt(2, k))
-    end if
-    if (c%anm(k) == bm_rigid) then
-      dv = dv - v(1:2, c%anb(k))
-    else
-      dv = dv - mesh2_point_velocity(vm(:, c%mnode(3, k)), vm(:, c%mnode(4, k)), c%mwt(3, k), c%mwt(4, k))
-    end if
-    call frame2_local(c%frame(1, 2, k), c%frame(2, 2, k), dv(1), dv(2), u(1), u(2))
-    if (c%cdm(k) == bm_rigid) call rigid2_add_spin(1.0_wp, v(3, c%cdb(k)), c%lever(1, k), c%lever(2, k), u(1), u(2))
-    if (c%anm(k) == bm_rigid) call rigid2_add_spin(-1.0_wp, v(3, c%anb(k)), c%lever(3, k), c%lever(4, k), u(1), u(2))
-  end function contact_velocity
 
   !> Component i (1: t, 2: n) of the cohesive impulse a + K u~ of contact k at
   !> its current velocity (0 for a contact without cohesion).
@@ -222,37 +163,29 @@ contains
   !> inverse masses and lever arms, meshed sides from their bodies' contact
   !> compliance), velocities at the beginning of the step, and the local
   !> problem each contact's law poses (shift, friction, cohesion).
-  subroutine nlgs_prepare(solver, c, b, m, laws, h, newton_again)
+  subroutine nlgs_prepare(solver, c, bd, laws, h, newton_again)
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
-    type(rbdy2_t), intent(in) :: b
-    type(mailx_t), intent(inout) :: m
+    type(bodies2_t), intent(in) :: bd        !< the body models (fracas_sides_2d)
     type(law_t), intent(in) :: laws(:)
     real(wp), intent(in) :: h
     !> a further Newton iteration of the same step (same contacts): the damage
     !> factors start from the last iteration's instead of 1
     logical, intent(in), optional :: newton_again
-    integer :: k, a, o
+    integer :: k
     real(wp) :: weff(4), coh(coh_size(2)), internals(n_internals(2)), factor
     logical :: active, cohesive, solvable, carry
     carry = .false.
     if (present(newton_again)) carry = newton_again .and. solver%s%damage_midpoint
     call require_2d(c)
-    if (c%with_mesh) call mesh_blocks(solver, c, m)
+    call sides2_prepare(solver%ws, c, bd)
     if (.not. allocated(solver%cz)) solver%cz = laws%czm
     internals = 0.0_wp
+    call sides2_local_velocities(c, bd, .true., c%u_begin)
     do k = 1, c%n
-      a = c%cdb(k); o = c%anb(k)
-      c%w(:, k) = 0.0_wp
-      if (c%cdm(k) == bm_rigid) call rigid2_add_delassus(b%inv_mass(:, a), c%frame(1, 2, k), c%frame(2, 2, k), &
-                                                         c%lever(1, k), c%lever(2, k), c%w(:, k))
-      if (c%anm(k) == bm_rigid) call rigid2_add_delassus(b%inv_mass(:, o), c%frame(1, 2, k), c%frame(2, 2, k), &
-                                                         c%lever(3, k), c%lever(4, k), c%w(:, k))
-      c%w(3, k) = c%w(2, k)
-      if (c%cdm(k) == bm_mesh .or. c%anm(k) == bm_mesh) call add_mesh_block(k)
+      call sides2_delassus(solver%ws, c, k, bd)
       ! A nearly rigid tangential direction would make the stick test ill-posed.
       c%w(1, k) = max(c%w(1, k), 1.0e-6_wp * c%w(4, k))
-      c%u_begin(:, k) = contact_velocity(c, k, b%vbegin, m%vbegin)
       if (c%with_cohesion) internals = c%internals(:, k)
       call law_local_problem(laws(c%law(k)), c%gap(k), h, c%u_begin(:, k), c%status_begin(k), internals, &
                              c%length(k), c%w(:, k), solver%s%damage_midpoint, solver%s%theta, c%shift(:, k), &
@@ -278,38 +211,6 @@ contains
       end if
     end do
 
-  contains
-
-    !> W += sum over meshed sides s of H_s G_s' for the meshed sides s' on the
-    !> same body (both, for a contact of a body with itself).
-    subroutine add_mesh_block(k)
-      integer, intent(in) :: k
-      integer :: s, s2, i, mb, g0, sl
-      real(wp) :: t(2), nrm(2), sgn, ht_g(2), hn_g(2), wgt
-      nrm = c%frame(:, 2, k)
-      t = [nrm(2), -nrm(1)]
-      do s = 1, 2
-        if (side_model(c, k, s) /= bm_mesh) cycle
-        sgn = merge(1.0_wp, -1.0_wp, s == 1)
-        do s2 = 1, 2
-          if (side_model(c, k, s2) /= bm_mesh .or. side_body(c, k, s2) /= side_body(c, k, s)) cycle
-          mb = solver%gm(s2, k)
-          g0 = solver%goff(s2, k)
-          ! H_s applied to the two columns of G_s2 (stored interleaved by rows)
-          ht_g = 0.0_wp; hn_g = 0.0_wp
-          do i = 2 * s - 1, 2 * s
-            wgt = sgn * c%mwt(i, k)
-            sl = 2 * solver%aslot(c%mnode(i, k)) - 1
-            call mesh2_add_hg(wgt, t, nrm, solver%gmat(g0 + 2 * sl - 1:g0 + 2 * sl), &
-                              solver%gmat(g0 + 2 * sl + 1:g0 + 2 * sl + 2), ht_g, hn_g)
-          end do
-          c%w(1, k) = c%w(1, k) + ht_g(1)
-          c%w(2, k) = c%w(2, k) + ht_g(2)
-          c%w(3, k) = c%w(3, k) + hn_g(1)
-          c%w(4, k) = c%w(4, k) + hn_g(2)
-        end do
-      end do
-    end subroutine add_mesh_block
   end subroutine nlgs_prepare
 
   !> The scene NLGS is the 2D specialisation: its kernels (fracas_local_solver), the
@@ -321,133 +222,6 @@ contains
                               ' (only 2D contacts are solved)')
   end subroutine require_2d
 
-  pure integer function side_model(c, k, s)
-    type(contacts_t), intent(in) :: c
-    integer, intent(in) :: k, s
-    side_model = merge(c%cdm(k), c%anm(k), s == 1)
-  end function side_model
-
-  pure integer function side_body(c, k, s)
-    type(contacts_t), intent(in) :: c
-    integer, intent(in) :: k, s
-    side_body = merge(c%cdb(k), c%anb(k), s == 1)
-  end function side_body
-
-  !> G = C H^T of every meshed contact side (the velocity change of its body's
-  !> contact dofs per unit impulse (t, n)), after making sure the bodies'
-  !> compliance covers the contact nodes.
-  subroutine mesh_blocks(solver, c, m)
-    type(nlgs_t), intent(inout) :: solver
-    type(contacts_t), intent(in) :: c
-    type(mailx_t), intent(inout) :: m
-    integer :: k, s, i, j, nnod, total, mb, g0, node, b, na
-    integer, allocatable :: nodes(:)
-    real(wp), allocatable :: cols(:, :)
-    real(wp) :: t(2), nrm(2), sgn, wgt
-    allocate (nodes(size(c%mnode, 1) * c%n))
-    nnod = 0
-    do k = 1, c%n
-      do i = 1, 2 * mesh_side_nodes(2)
-        if (side_model(c, k, (i - 1) / mesh_side_nodes(2) + 1) /= bm_mesh) cycle
-        nnod = nnod + 1
-        nodes(nnod) = c%mnode(i, k)
-      end do
-    end do
-    call mailx_require_compliance(m, nodes(1:nnod))
-    ! Active nodes per body (see nlgs_t), those of the last call cleared first.
-    call clear_active(solver)
-    call grow(solver%aslot, m%nnodes, fill=0)
-    call grow(solver%nact, m%n)
-    call grow(solver%abase, m%n)
-    solver%nact = 0
-    do k = 1, nnod
-      b = m%node_body(nodes(k))
-      if (m%dense(b)) then
-        solver%nact(b) = m%node_first(b + 1) - m%node_first(b)
-      else if (solver%aslot(nodes(k)) == 0) then
-        solver%nact(b) = solver%nact(b) + 1
-        solver%aslot(nodes(k)) = -1          ! counted, placed below
-      end if
-    end do
-    na = 0
-    do b = 1, m%n
-      solver%abase(b) = na
-      na = na + solver%nact(b)
-    end do
-    call grow(solver%anodes, na)
-    solver%nact = 0
-    do k = 1, nnod
-      node = nodes(k)
-      b = m%node_body(node)
-      if (solver%aslot(node) > 0) cycle
-      if (m%dense(b)) then
-        if (solver%nact(b) > 0) cycle
-        do j = m%node_first(b), m%node_first(b + 1) - 1
-          solver%nact(b) = solver%nact(b) + 1
-          solver%anodes(solver%abase(b) + solver%nact(b)) = j
-          solver%aslot(j) = solver%nact(b)
-        end do
-      else
-        solver%nact(b) = solver%nact(b) + 1
-        solver%anodes(solver%abase(b) + solver%nact(b)) = node
-        solver%aslot(node) = solver%nact(b)
-      end if
-    end do
-    call grow(solver%goff, 2, c%n)
-    call grow(solver%gm, 2, c%n)
-    total = 0
-    do k = 1, c%n
-      do s = 1, 2
-        solver%goff(s, k) = 0
-        solver%gm(s, k) = 0
-        if (side_model(c, k, s) /= bm_mesh) cycle
-        solver%goff(s, k) = total
-        solver%gm(s, k) = 2 * solver%nact(side_body(c, k, s))
-        total = total + 2 * solver%gm(s, k)
-      end do
-    end do
-    call grow(solver%gmat, total)
-    do k = 1, c%n
-      nrm = c%frame(:, 2, k)
-      t = [nrm(2), -nrm(1)]
-      do s = 1, 2
-        if (side_model(c, k, s) /= bm_mesh) cycle
-        sgn = merge(1.0_wp, -1.0_wp, s == 1)
-        b = side_body(c, k, s)
-        mb = solver%gm(s, k)
-        g0 = solver%goff(s, k)
-        solver%gmat(g0 + 1:g0 + 2 * mb) = 0.0_wp
-        if (allocated(cols)) then
-          if (size(cols, 1) /= mailx_contact_dofs(m, b)) deallocate (cols)
-        end if
-        if (.not. allocated(cols)) allocate (cols(mailx_contact_dofs(m, b), 2))
-        do i = 2 * s - 1, 2 * s
-          node = c%mnode(i, k)
-          wgt = sgn * c%mwt(i, k)
-          if (wgt == 0.0_wp) cycle
-          call mailx_compliance_columns(m, node, cols)
-          ! rows of the active nodes; (G_t, G_n) interleaved, as the mesh kernel reads them
-          do j = 1, solver%nact(b)
-            associate (r1 => 2 * m%cslot(solver%anodes(solver%abase(b) + j)) - 1, q => g0 + 4 * j - 4)
-              call mesh2_add_g(wgt, t, nrm, cols(r1, 1), cols(r1, 2), cols(r1 + 1, 1), cols(r1 + 1, 2), &
-                               solver%gmat(q + 1:q + 4))
-            end associate
-          end do
-        end do
-      end do
-    end do
-  end subroutine mesh_blocks
-
-  !> Clear the active-node marks of the step (aslot is kept zero between steps).
-  subroutine clear_active(solver)
-    type(nlgs_t), intent(inout) :: solver
-    integer :: b
-    if (.not. allocated(solver%nact)) return
-    do b = 1, size(solver%nact)
-      solver%aslot(solver%anodes(solver%abase(b) + 1:solver%abase(b) + solver%nact(b))) = 0
-    end do
-  end subroutine clear_active
-
   !> Solve the step's contact problem (nlgs_solve_once). With damage within the
   !> step, the spring factors of the cohesive contacts follow the jumps after each
   !> check pass (damage_factors: the NLGS converges only once they settle); should
@@ -456,17 +230,16 @@ contains
   !> each local update instead made Gauss–Seidel cycle; a factor frozen over a block of
   !> sweeps keeps each block a linear problem. The report adds up the sweeps of all
   !> passes.
-  subroutine nlgs_solve(solver, c, b, m, report)
+  subroutine nlgs_solve(solver, c, bd, report)
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
-    type(rbdy2_t), intent(inout) :: b
-    type(mailx_t), intent(inout) :: m
+    type(bodies2_t), intent(in) :: bd
     type(nlgs_report_t), intent(out) :: report
     integer, parameter :: max_passes = 100
     type(nlgs_report_t) :: once
     integer :: pass, checks
     logical :: changed
-    call nlgs_solve_once(solver, c, b, m, report)
+    call nlgs_solve_once(solver, c, bd, report)
     if (.not. (solver%s%damage_midpoint .and. c%with_cohesion)) return   ! lmgc90: no further pass
     checks = solver%s%max_checks
     do pass = 2, max_passes + 1
@@ -475,8 +248,8 @@ contains
       ! The passes share the step's sweep budget (sweeps_per_check x max_checks).
       solver%s%max_checks = checks - (report%sweeps + solver%s%sweeps_per_check - 1) / solver%s%sweeps_per_check
       if (pass > max_passes .or. solver%s%max_checks < 1) exit
-      b%v = b%vfree
-      call nlgs_solve_once(solver, c, b, m, once)
+      call sides2_restart_velocities(bd)
+      call nlgs_solve_once(solver, c, bd, once)
       solver%s%max_checks = checks
       once%sweeps = once%sweeps + report%sweeps
       once%updates = once%updates + report%updates
@@ -591,43 +364,24 @@ contains
   !> entry b%v = vfree (rigid), m%vfree (meshes), and c%r holds the warm start; on
   !> exit the velocities are vfree + M^-1 H^T r (rigid) and vfree + A_ff^-1 H^T r
   !> (meshes), and c%u the final local velocities.
-  subroutine nlgs_solve_once(solver, c, b, m, report)
+  subroutine nlgs_solve_once(solver, c, bd, report)
     type(nlgs_t), intent(inout) :: solver
     type(contacts_t), intent(inout) :: c
-    type(rbdy2_t), intent(inout) :: b
-    type(mailx_t), intent(inout) :: m
+    type(bodies2_t), intent(in) :: bd
     type(nlgs_report_t), intent(out) :: report
     integer :: k, iblock, isweep, n
     real(wp) :: sums(7), maxes(2), fsum, qsum, vscale
     logical :: diverged
-    integer(i8) :: tv0, tv1, rate
     call require_2d(c)
     n = c%n
     diverged = .false.
     report%sweeps = 0
     call grow(solver%order, n)
     call grow(solver%qfree, 2, n)
-    call grow(solver%pidx, n)
-    call grow(solver%pc, pk_size, n)
-    call grow(solver%pb, 2, n)
-    call grow(solver%pcoh, n)
-    call grow(solver%pr, 2, n)
-    call grow(solver%pst, n)
-    call grow(solver%bslot, b%n, fill=0)     ! kept zero between steps (unpack_bodies)
-    call grow(solver%blist, b%n)
-    call grow(solver%bv, 6, b%n)
-    do k = 1, n
-      solver%qfree(:, k) = contact_velocity(c, k, b%v, m%vfree) + c%shift(:, k)
-      if (c%active(k) .and. c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) call inject(k, c%r(1, k), c%r(2, k))
-    end do
-    ! Velocity scale of the step: free relative velocities and body speeds.
-    vscale = 0.0_wp
-    do k = 1, n
-      vscale = vscale + sum(solver%qfree(:, k)**2)
-      if (c%cdm(k) == bm_rigid) vscale = vscale + sum(b%vfree(1:2, c%cdb(k))**2)
-      if (c%anm(k) == bm_rigid) vscale = vscale + sum(b%vfree(1:2, c%anb(k))**2)
-    end do
-    if (n > 0) vscale = sqrt(vscale / n)
+    call sides2_reserve(solver%ws, n, bd)
+    ! Free local velocities (the rigid pairs' warm start on the way) and the
+    ! velocity scale of the step: free relative velocities and body speeds.
+    call sides2_begin_velocities(c, bd, solver%qfree, vscale)
     select case (solver%s%order)
     case ('reversed')
       solver%order(1:n) = [(n + 1 - k, k=1, n)]
@@ -636,8 +390,7 @@ contains
     case default
       solver%order(1:n) = [(k, k=1, n)]
     end select
-    call pack_bodies()
-    if (c%with_mesh) call pack_meshes()
+    call sides2_pack_bodies(solver%ws, c, bd)
     if (solver%s%order /= 'shuffled') call pack_contacts()
     report%converged = n == 0
     if (n > 0) then
@@ -672,18 +425,12 @@ contains
       end do blocks
       call unpack_contacts()
     end if
-    call unpack_bodies()
-    if (c%with_mesh) then
-      call system_clock(tv0, rate)
-      call mesh_velocities()
-      call system_clock(tv1)
-      report%velocity_seconds = real(tv1 - tv0, wp) / real(rate, wp)
-    end if
+    call sides2_unpack_bodies(solver%ws, c, bd, report%velocity_seconds)
     ! Final local velocities, statuses and the natural-map residual.
+    call sides2_local_velocities(c, bd, .false., c%u)
     fsum = 0.0_wp; qsum = 0.0_wp
     report%nactive = 0
     do k = 1, n
-      c%u(:, k) = contact_velocity(c, k, b%v, m%v)
       if (.not. c%active(k)) cycle
       if (c%r(1, k) == 0.0_wp .and. c%r(2, k) == 0.0_wp) then
         c%status(k) = st_noctc
@@ -715,20 +462,6 @@ contains
       end if
     end subroutine settle_damage
 
-    !> Add impulse (dt, dn) of contact k to both bodies' velocities.
-    subroutine inject(k, dt, dn)
-      integer, intent(in) :: k
-      real(wp), intent(in) :: dt, dn
-      integer :: a, o
-      real(wp) :: px, py
-      a = c%cdb(k); o = c%anb(k)
-      call frame2_global(c%frame(1, 2, k), c%frame(2, 2, k), dt, dn, px, py)
-      call rigid2_add_impulse(b%v(:, a), b%inv_mass(:, a), 1.0_wp, px, py, &
-                              rigid2_moment(dt, dn, c%lever(1, k), c%lever(2, k)))
-      call rigid2_add_impulse(b%v(:, o), b%inv_mass(:, o), -1.0_wp, px, py, &
-                              rigid2_moment(dt, dn, c%lever(3, k), c%lever(4, k)))
-    end subroutine inject
-
     !> Coloured order: the active contacts in stored order, cut in blocks of
     !> colour_block; in each block, greedy colours (two contacts sharing a body
     !> never share one) and the contacts sorted by colour, stored order inside a
@@ -739,12 +472,12 @@ contains
       integer, parameter :: colour_block = 256, ncol = 64
       integer(i8), allocatable :: used(:)
       integer :: blk(colour_block), col(colour_block), cnt(0:ncol), k, mc, j, cc, nact
-      allocate (used(b%n))
+      allocate (used(sides2_rigid_bodies(bd)))
       used = 0_i8
       nact = 0
       mc = 0
       do k = 1, n
-        if (c%active(k) .and. c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) then
+        if (c%active(k) .and. rigid_pair(c, k)) then
           mc = mc + 1
           blk(mc) = k
         end if
@@ -771,223 +504,28 @@ contains
         end if
       end do
       do k = 1, n
-        if (c%active(k) .and. c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) cycle
+        if (c%active(k) .and. rigid_pair(c, k)) cycle
         nact = nact + 1
         solver%order(nact) = k
       end do
     end subroutine colour_order
 
-    !> Slots in bv of the bodies of the active contacts, in order of first
-    !> appearance in the stored contact order; their velocities and inverse masses.
-    subroutine pack_bodies()
-      integer :: k, j, ib
-      solver%nbp = 0
-      do k = 1, n
-        if (.not. c%active(k)) cycle
-        do j = 1, 2
-          if (side_model(c, k, j) /= bm_rigid) cycle
-          ib = merge(c%cdb(k), c%anb(k), j == 1)
-          if (solver%bslot(ib) /= 0) cycle
-          solver%nbp = solver%nbp + 1
-          solver%bslot(ib) = solver%nbp
-          solver%blist(solver%nbp) = ib
-        end do
-      end do
-      do j = 1, solver%nbp
-        ib = solver%blist(j)
-        solver%bv(1:3, j) = b%v(:, ib)
-        solver%bv(4:6, j) = b%inv_mass(:, ib)
-      end do
-    end subroutine pack_bodies
-
-    !> Velocities back to the bodies; the slot map is cleared for the next step.
-    subroutine unpack_bodies()
-      integer :: j, ib
-      do j = 1, solver%nbp
-        ib = solver%blist(j)
-        b%v(:, ib) = solver%bv(1:3, j)
-        solver%bslot(ib) = 0
-      end do
-      solver%nbp = 0
-    end subroutine unpack_bodies
-
-    !> Records of the active contacts in the current sweep order: rigid pairs
-    !> for the packed kernel, contacts with a meshed side for the mesh kernel.
+    !> The active contacts' records in the current sweep order (fracas_sides_2d).
     subroutine pack_contacts()
-      integer :: ii, k, j, jg, sd
-      j = 0
-      jg = 0
-      do ii = 1, n
-        k = solver%order(ii)
-        if (.not. c%active(k)) cycle
-        if (c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) then
-          j = j + 1
-          solver%pidx(j) = k
-          solver%pb(1, j) = solver%bslot(c%cdb(k))
-          solver%pb(2, j) = solver%bslot(c%anb(k))
-          call record(k, solver%pc(:, j), solver%pcoh(j))
-          solver%pr(:, j) = c%r(:, k)
-          solver%pst(j) = c%status(k)
-        else
-          jg = jg + 1
-          solver%gidx(jg) = k
-          call record(k, solver%gc(:, jg), solver%gcoh(jg))
-          solver%gr(:, jg) = c%r(:, k)
-          solver%gst(jg) = c%status(k)
-          do sd = 1, 2
-            if (side_model(c, k, sd) == bm_rigid) then
-              solver%gside(2 * sd - 1, jg) = 1
-              solver%gside(2 * sd, jg) = solver%bslot(side_body(c, k, sd))
-              solver%gslot(2 * sd - 1:2 * sd, jg) = 0
-              solver%gwt(2 * sd - 1:2 * sd, jg) = 0.0_wp
-              solver%ggm(sd, jg) = 0
-              solver%gfirst(sd, jg) = 0
-            else
-              solver%gside(2 * sd - 1, jg) = 2
-              solver%gside(2 * sd, jg) = solver%goff(sd, k)
-              solver%ggm(sd, jg) = solver%gm(sd, k)
-              solver%gfirst(sd, jg) = solver%moff(side_body(c, k, sd)) + 1
-              solver%gslot(2 * sd - 1, jg) = solver%moff(side_body(c, k, sd)) + &
-                                             2 * solver%aslot(c%mnode(2 * sd - 1, k)) - 1
-              solver%gslot(2 * sd, jg) = solver%moff(side_body(c, k, sd)) + 2 * solver%aslot(c%mnode(2 * sd, k)) - 1
-              solver%gwt(2 * sd - 1:2 * sd, jg) = merge(1.0_wp, -1.0_wp, sd == 1) * c%mwt(2 * sd - 1:2 * sd, k)
-            end if
-          end do
-        end if
-      end do
-      solver%np = j
-      solver%ng = jg
-      solver%any_coh = any(solver%pcoh(1:j) /= 0)
+      call sides2_pack_contacts(solver%ws, c, solver%order(1:n))
     end subroutine pack_contacts
-
-    !> The packed record of contact k (see gs_sweep_2d_packed) and its column of c%coh.
-    subroutine record(k, rec, icoh)
-      integer, intent(in) :: k
-      real(wp), intent(out) :: rec(pk_size)
-      integer, intent(out) :: icoh
-      rec(1:2) = c%frame(:, 2, k)
-      rec(3:6) = c%lever(:, k)
-      rec(7:10) = c%w(:, k)
-      rec(11:16) = c%wi(:, k)
-      rec(17:18) = c%shift(:, k)
-      rec(19) = c%mu(k)
-      rec(20) = 0.0_wp
-      icoh = 0
-      if (c%cohesive(k)) icoh = k
-    end subroutine record
 
     !> Impulses and statuses back to the contact store.
     subroutine unpack_contacts()
-      integer :: j, k
-      do j = 1, solver%np
-        k = solver%pidx(j)
-        c%r(:, k) = solver%pr(:, j)
-        c%status(k) = solver%pst(j)
-      end do
-      do j = 1, solver%ng
-        k = solver%gidx(j)
-        c%r(:, k) = solver%gr(:, j)
-        c%status(k) = solver%gst(j)
-      end do
+      call sides2_unpack_contacts(solver%ws, c)
     end subroutine unpack_contacts
-
-    !> Contact-dof velocities (from the free velocities) of the meshed bodies
-    !> that active contacts touch, then the warm-start impulses of the contacts
-    !> with a meshed side, on both their sides.
-    subroutine pack_meshes()
-      integer :: k, sd, bm, total, j
-      call grow(solver%moff, m%n)
-      solver%moff = -1
-      total = 0
-      do k = 1, n
-        if (.not. c%active(k)) cycle
-        do sd = 1, 2
-          if (side_model(c, k, sd) /= bm_mesh) cycle
-          bm = side_body(c, k, sd)
-          if (solver%moff(bm) >= 0) cycle
-          solver%moff(bm) = total
-          total = total + solver%gm(sd, k)
-        end do
-      end do
-      call grow(solver%mv, total)
-      do bm = 1, m%n
-        if (solver%moff(bm) < 0) cycle
-        do j = 1, solver%nact(bm)
-          solver%mv(solver%moff(bm) + 2 * j - 1:solver%moff(bm) + 2 * j) = m%vfree(:, solver%anodes(solver%abase(bm) + j))
-        end do
-      end do
-      call grow(solver%gidx, n)
-      call grow(solver%gside, 4, n)
-      call grow(solver%ggm, 2, n)
-      call grow(solver%gfirst, 2, n)
-      call grow(solver%gslot, 2 * mesh_side_nodes(2), n)
-      call grow(solver%gcoh, n)
-      call grow(solver%gst, n)
-      call grow(solver%gc, pk_size, n)
-      call grow(solver%gwt, 2 * mesh_side_nodes(2), n)
-      call grow(solver%gr, 2, n)
-      ! Warm start of the contacts with a meshed side.
-      do k = 1, n
-        if (.not. c%active(k)) cycle
-        if (c%cdm(k) == bm_rigid .and. c%anm(k) == bm_rigid) cycle
-        if (all(c%r(:, k) == 0.0_wp)) cycle
-        do sd = 1, 2
-          if (side_model(c, k, sd) == bm_rigid) then
-            call inject_rigid_side(k, sd, c%r(1, k), c%r(2, k))
-          else
-            call mesh2_add_impulse(solver%mv, solver%gmat, solver%goff(sd, k), solver%moff(side_body(c, k, sd)), &
-                                   solver%gm(sd, k), c%r(1, k), c%r(2, k))
-          end if
-        end do
-      end do
-    end subroutine pack_meshes
-
-    !> Impulse (dt, dn) of contact k on its rigid side sd, in the packed bodies.
-    subroutine inject_rigid_side(k, sd, dt, dn)
-      integer, intent(in) :: k, sd
-      real(wp), intent(in) :: dt, dn
-      call rigid2_side_impulse(solver%bv(:, solver%bslot(side_body(c, k, sd))), merge(1.0_wp, -1.0_wp, sd == 1), &
-                               c%frame(1, 2, k), c%frame(2, 2, k), c%lever(2 * sd - 1:2 * sd, k), dt, dn)
-    end subroutine inject_rigid_side
-
-    !> Velocities of the meshed bodies from the contact impulses on their nodes.
-    subroutine mesh_velocities()
-      integer :: k, sd, i
-      real(wp), allocatable :: imp(:, :)
-      real(wp) :: p(2), sgn
-      allocate (imp(2, m%nnodes))
-      imp = 0.0_wp
-      do k = 1, n
-        if (.not. c%active(k)) cycle
-        call frame2_global(c%frame(1, 2, k), c%frame(2, 2, k), c%r(1, k), c%r(2, k), p(1), p(2))
-        do sd = 1, 2
-          if (side_model(c, k, sd) /= bm_mesh) cycle
-          sgn = merge(1.0_wp, -1.0_wp, sd == 1)
-          do i = 2 * sd - 1, 2 * sd
-            call mesh2_add_node(sgn * c%mwt(i, k), p(1), p(2), imp(1, c%mnode(i, k)), imp(2, c%mnode(i, k)))
-          end do
-        end do
-      end do
-      call mailx_velocity_from_impulses(m, imp)
-    end subroutine mesh_velocities
 
     !> One Gauss–Seidel sweep; with check, LMGC90's norm sums of this sweep.
     subroutine sweep(check, evaluate_only)
       logical, intent(in) :: check, evaluate_only
-      real(wp) :: s6(6), g6(6), gmax(2)
-      integer :: np
-      np = solver%np
-      report%updates = report%updates + np + solver%ng
-      call gs_sweep_2d_packed(np, solver%pb, solver%pc, solver%pcoh, solver%any_coh, c%coh, solver%pr, &
-                              solver%pst, solver%bv, &
-                              solver%s%relax, check, s6, maxes, evaluate_only)
-      if (solver%ng > 0) then
-        call gs_sweep_mesh(solver%ng, solver%gc, solver%gside, solver%ggm, solver%gfirst, solver%gslot, solver%gwt, &
-                           solver%gcoh, c%coh, solver%gr, solver%gst, solver%bv, solver%mv, solver%gmat, &
-                           solver%s%relax, check, g6, gmax, evaluate_only)
-        s6 = s6 + g6
-        maxes = max(maxes, gmax)
-      end if
+      real(wp) :: s6(6)
+      report%updates = report%updates + solver%ws%np + solver%ws%ng
+      call sides2_sweep(solver%ws, c, solver%s%relax, check, evaluate_only, s6, maxes)
       if (check) sums(1:6) = s6
     end subroutine sweep
 

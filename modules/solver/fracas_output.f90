@@ -23,11 +23,13 @@ module fracas_output
                         vtu_cells_fixed, vtk_line, vtu_field_strings
   use fracas_contactors, only: tactor_center, tactor_vertices, tactor_kind_name, tk_polyg, tk_jonc, tk_disk, &
                                tk_xksid, tk_alpxx
-  use fracas_scene, only: scene_t, step_report_t
+  use fracas_scene, only: scene_t, step_report_t, scene_energy_terms
+  use fracas_energy, only: energy_terms_t
   use fracas_version, only: version_string, git_commit, build_type, compiler, compiler_flags
   use fracas_contact_laws, only: law_czm, law_iqs_clb_g0, int_beta
   use fracas_write_outbox, only: write_dof_file, write_vloc_rloc_file, write_gpv_file
-  use fracas_mailx, only: mailx_gauss_values
+  use fracas_mailx, only: mailx_gauss_values, mailx_dof_records, mailx_write_static, mailx_write_snapshot
+  use fracas_rbdy2, only: rbdy2_dof_records
   use fracas_elements, only: el_ngauss_gpv, el_name, el_vtk_type, el_vtk_order
   use fracas_cracks, only: crack_paths_t, cracks_paths, cracks_lengths, cracks_fragments, cracks_edge_beta, &
                            fragments_t, cracks_fragment_stats
@@ -876,23 +878,8 @@ contains
     call cpu_time(t0)
     o%n_out = o%n_out + 1
     write (num, '(i0)') o%n_out
-    allocate (dofs(sc%bodies%n + sc%meshes%n))
-    do k = 1, sc%bodies%n
-      dofs(k)%body = sc%bodies%number(k)
-      dofs(k)%x = sc%bodies%x(:, k)
-      dofs(k)%v = sc%bodies%v(:, k)
-    end do
-    associate (ms => sc%meshes)
-      do k = 1, ms%n
-        associate (d => dofs(sc%bodies%n + k), i1 => ms%node_first(k), i2 => ms%node_first(k + 1) - 1)
-          d%model = 'MAILx'
-          d%body = k
-          d%nodes = [(it, it=1, i2 - i1 + 1)]
-          d%node_x = ms%x(:, i1:i2)
-          d%node_v = ms%v(:, i1:i2)
-        end associate
-      end do
-    end associate
+    ! Each body model's records, rigid first (LMGC90's order).
+    dofs = [rbdy2_dof_records(sc%bodies), mailx_dof_records(sc%meshes)]
     call write_dof_file(o%outbox//'/DOF.OUT.'//trim(num), sc%step, sc%time, dofs)
     if (sc%meshes%n > 0) call write_gpv_file(o%outbox//'/GPV.OUT.'//trim(num), sc%step, sc%time, gpv_records(sc))
     ! LMGC90 lists interactions type by type, numbered within their type.
@@ -1097,24 +1084,14 @@ contains
     call h5_close_group(g)
   end subroutine fragments_group
 
-  !> The meshed bodies' state in the newest snapshot: nodal displacements and
-  !> velocities (2, nodes), the force of the velocity drives on their nodes
-  !> (2, nodes; when some dof is driven), Gauss-point states (13, Gauss points:
-  !> stress, strain, plastic strain, p; see /mesh/gauss_point_fields), and the
-  !> side models of the contacts.
+  !> The meshed bodies' state in the newest snapshot (mailx_write_snapshot), and
+  !> the side models of the contacts.
   subroutine mesh_snapshot(o, sc)
     type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
     integer(hid_t) :: g
-    real(wp), allocatable :: gp(:, :)
-    allocate (gp(size(sc%meshes%gp, 1), size(sc%meshes%gp, 2)))
-    call mailx_gauss_values(sc%meshes, gp)
     call results_last_snapshot(o%h5, g)
-    call h5_write_dataset(g, 'mesh_X', sc%meshes%x)
-    call h5_write_dataset(g, 'mesh_V', sc%meshes%v)
-    ! Force of the velocity drives on their nodes (reactions; zero on free dofs).
-    if (any(sc%meshes%driven)) call h5_write_dataset(g, 'mesh_F_support', sc%meshes%fsupport)
-    call h5_write_dataset(g, 'mesh_gauss_points', gp)
+    call mailx_write_snapshot(sc%meshes, g)
     call h5_write_dataset(g, 'cd_model', int(sc%contacts%cdm(1:sc%contacts%n), ik))
     call h5_write_dataset(g, 'an_model', int(sc%contacts%anm(1:sc%contacts%n), ik))
     call h5_close_group(g)
@@ -1132,31 +1109,15 @@ contains
     end do
   end function join
 
-  !> The meshes' fixed description in /mesh: reference node coordinates,
-  !> node and element ranges of each body, element kinds (VTK cell types),
-  !> connectivity (1-based mesh node numbers), materials.
+  !> The meshes' fixed description in /mesh (mailx_write_static) and their
+  !> cohesive interfaces (families, edges).
   subroutine mesh_static(o, sc)
     type(output_t), intent(inout) :: o
     type(scene_t), intent(in) :: sc
     integer(hid_t) :: g
-    integer :: e
-    integer(ik), allocatable :: vtk(:)
     associate (m => sc%meshes)
-      allocate (vtk(m%nelem))
-      do e = 1, m%nelem
-        vtk(e) = int(el_vtk_type(m%el_kind(e)), ik)
-      end do
       call results_group(o%h5, 'mesh', g)
-      call h5_write_attr(g, 'plane', plane_names(m%plane))
-      call h5_write_attr(g, 'gauss_point_fields', 'sxx syy sxy szz exx eyy gxy ezz pxx pyy pgxy pzz p')
-      call h5_write_dataset(g, 'reference', m%ref)
-      call h5_write_dataset(g, 'body_first_node', int(m%node_first, ik))
-      call h5_write_dataset(g, 'body_first_element', int(m%elem_first, ik))
-      call h5_write_dataset(g, 'element_vtk_type', vtk)
-      call h5_write_dataset(g, 'element_first_node', int(m%el_first, ik))
-      call h5_write_dataset(g, 'element_nodes', int(m%el_nodes, ik))
-      call h5_write_dataset(g, 'element_first_gauss_point', int(m%el_gp, ik))
-      call h5_write_dataset(g, 'element_material', int(m%el_mat, ik))
+      call mailx_write_static(m, g)
       if (sc%cracks%nfamilies > 0) call h5_write_attr(g, 'interface_families', join(sc%cracks%family_names))
       if (sc%cracks%nedges > 0) then
         call h5_write_dataset(g, 'interface_edge_nodes', int(sc%cracks%edge_nodes, ik))
@@ -1173,6 +1134,7 @@ contains
     type(scene_t), intent(in) :: sc
     type(step_report_t), intent(in) :: rep
     real(wp) :: balance, wgrav, wforces, wsupports, crack, damaged
+    type(energy_terms_t) :: e
     real(wp) :: per_family(sc%cracks%nfamilies)
     integer :: nbroken, ndamaged
     real(wp) :: t0
@@ -1181,20 +1143,21 @@ contains
     if (.not. o%h5_open) return
     call cpu_time(t0)
     call cracks_lengths(sc%cracks, crack, damaged, per_family, nbroken, ndamaged)
-    ! Rigid and meshed bodies together (kinetic0 holds the initial kinetic and
+    ! Every body model's terms together (kinetic0 holds the initial kinetic and
     ! elastic energy; meshes add their strain energy and plastic work).
-    wgrav = sc%work_gravity + sc%meshes%work_gravity
-    wforces = sc%work_forces + sc%meshes%work_forces
-    wsupports = sc%work_supports + sc%meshes%work_supports
-    balance = rep%kinetic + sc%meshes%elastic + sc%meshes%plastic_work + sc%cohesive_energy - sc%kinetic0 - &
+    e = scene_energy_terms(sc)
+    wgrav = e%work_gravity
+    wforces = e%work_forces
+    wsupports = e%work_supports
+    balance = rep%kinetic + e%elastic + e%plastic + sc%cohesive_energy - sc%kinetic0 - &
               (wgrav + wforces + wsupports - sc%dissipated)
     row = [real(sc%step, wp), sc%time, real(rep%contacts, wp), &
       real(rep%nlgs%nactive, wp), real(rep%nlgs%sweeps, wp), merge(1.0_wp, 0.0_wp, rep%nlgs%converged .and. rep%newton_converged), &
       rep%nlgs%residual, rep%nlgs%residual_onepq, rep%nlgs%quad_dv, rep%nlgs%maxm_dv, rep%nlgs%mean_dvor, &
       rep%kinetic, wgrav, wforces, wsupports, sc%dissipated, sc%cohesive_energy, &
       sc%damage_dissipated, balance, &
-      rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, sc%meshes%elastic, &
-      sc%meshes%plastic_work, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
+      rep%mean_overlap, rep%max_overlap, rep%solve_seconds, rep%step_seconds, e%elastic, &
+      e%plastic, real(rep%newton_iterations, wp), crack, damaged, real(nbroken, wp), &
       real(ndamaged, wp), rep%bodies_seconds, rep%detect_seconds, rep%prepare_seconds, &
       real(rep%nlgs%updates, wp), rep%velocity_seconds, real(fragment_count(sc), wp), real(rep%substeps, wp), &
       real(rep%rejected, wp), rep%crack_increment]

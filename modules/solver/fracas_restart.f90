@@ -12,12 +12,13 @@ module fracas_restart
   use fracas_strings, only: itoa, rtoa
   use fracas_ids, only: n_inter, n_status
   use fracas_contact_laws, only: n_internals
-  use fracas_bulk, only: gp_size
   use fracas_scene, only: scene_t
   use fracas_state_guard, only: scene_fault
-  use fracas_restart_h5, only: restart_state_t, restart_h5_write, restart_h5_read
+  use fracas_restart_h5, only: restart_state_t, restart_h5_write, restart_h5_read, restart_bad, restart_check_real1, &
+                               restart_check_real2
   use fracas_results_h5, only: results_h5_t
-  use fracas_mailx, only: mailx_restore_state
+  use fracas_rbdy2, only: rbdy2_save_state, rbdy2_restore_state, rbdy2_check_restart
+  use fracas_mailx, only: mailx_save_state, mailx_restore_state, mailx_check_restart
   implicit none
   private
   public :: restart_save, restart_load, scene_capture, scene_restore
@@ -70,10 +71,12 @@ contains
     st%step_level = sc%step_level
     st%time = sc%time
     st%rng_state = sc%solver%rng%state
-    st%energies = [sc%kinetic0, sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, &
-                   sc%cohesive_energy, sc%damage_dissipated]
-    st%x = sc%bodies%x
-    st%v = sc%bodies%v
+    ! Each body model's state (rigid: x, v and its work terms, energies(2:4)).
+    call rbdy2_save_state(sc%bodies, st%x, st%v, st%energies(2:4))
+    st%energies(1) = sc%kinetic0
+    st%energies(5:7) = [sc%dissipated, sc%cohesive_energy, sc%damage_dissipated]
+    if (sc%meshes%nnodes > 0) &
+      call mailx_save_state(sc%meshes, st%mesh_x, st%mesh_v, st%mesh_gp, st%mesh_fint, st%mesh_energies)
     st%ntactors = sc%tactors%n
     associate (h => sc%hist)
       n = h%n
@@ -98,15 +101,6 @@ contains
       st%pairs(3, :) = d%pair_inter(1:n)
       st%pairs(4, :) = d%pair_law(1:n)
       st%pair_alert = d%pair_alert(1:n)
-    end associate
-    associate (m => sc%meshes)
-      if (m%nnodes > 0) then
-        st%mesh_x = m%x
-        st%mesh_v = m%v
-        st%mesh_gp = m%gp
-        st%mesh_fint = m%fint
-        st%mesh_energies = [m%kinetic0, m%work_gravity, m%work_forces, m%work_supports, m%plastic_work]
-      end if
     end associate
     associate (cr => sc%cracks)
       if (cr%npts > 0) then
@@ -147,17 +141,10 @@ contains
     sc%time = st%time
     sc%solver%rng%state = st%rng_state
     sc%kinetic0 = st%energies(1)
-    sc%work_gravity = st%energies(2)
-    sc%work_forces = st%energies(3)
-    sc%work_supports = st%energies(4)
     sc%dissipated = st%energies(5)
     sc%cohesive_energy = st%energies(6)
     sc%damage_dissipated = st%energies(7)
-    ! End of the step = beginning of the next (rbdy2_end_step).
-    sc%bodies%x = st%x
-    sc%bodies%xbegin = st%x
-    sc%bodies%v = st%v
-    sc%bodies%vbegin = st%v
+    call rbdy2_restore_state(sc%bodies, st%x, st%v, st%energies(2:4))
     associate (h => sc%hist)
       n = size(st%inter)
       h%n = n
@@ -218,8 +205,7 @@ contains
       call bad('', 'the restart point has '//itoa(size(st%x, 2))//' bodies and '//itoa(st%ntactors)// &
                ' contactors, the deck '//itoa(sc%bodies%n)//' and '//itoa(nt)// &
                ' (restart with the deck of the run that wrote it)')
-    call real2('X', st%x, 3, sc%bodies%n)
-    call real2('V', st%v, 3, sc%bodies%n)
+    call rbdy2_check_restart(sc%bodies, st)
     call real1('energies', st%energies, size(st%energies))
     ! postpro_sums: DISSIPATED ENERGY's running sum (fracas_postpro), or none in older files.
     if (size(st%postpro_sums) > 1) call bad('postpro_sums', itoa(size(st%postpro_sums))//' values, expected 1')
@@ -238,11 +224,12 @@ contains
     call int1('history/sub', st%sub, n, 0, huge(1))
     call int1('history/status', st%status, n, 1, n_status)
     ! per-contact vectors have the store's dimension
-    call real2('history/force', st%force, sc%contacts%nd, n)
-    call real2('history/point', st%point, sc%contacts%nd, n)
+    call restart_check_real2(st, 'history/force', st%force, sc%contacts%nd, n)
+    call restart_check_real2(st, 'history/point', st%point, sc%contacts%nd, n)
     if (sc%contacts%with_cohesion .neqv. allocated(st%internals)) &
       call bad('history/internals', 'the deck and the restart point disagree on cohesive laws')
-    if (allocated(st%internals)) call real2('history/internals', st%internals, n_internals(sc%contacts%nd), n)
+    if (allocated(st%internals)) call restart_check_real2(st, 'history/internals', st%internals, &
+                                                          n_internals(sc%contacts%nd), n)
     ! Broad-phase pairs: candidate, antagonist, interaction type, law.
     n = size(st%pair_alert)
     if (size(st%pairs, 1) /= 4 .or. size(st%pairs, 2) /= n) call bad('pairs', 'shape ('//itoa(size(st%pairs, 1))// &
@@ -255,16 +242,7 @@ contains
     if (any(st%pair_alert < 0.0_wp)) call bad('pair_alert', 'a negative alert distance')
     if (allocated(st%mesh_x) .neqv. sc%meshes%nnodes > 0) &
       call bad('mesh', 'the deck and the restart point disagree on meshed bodies')
-    if (allocated(st%mesh_x)) then
-      call real2('mesh/X', st%mesh_x, 2, sc%meshes%nnodes)
-      call real2('mesh/V', st%mesh_v, 2, sc%meshes%nnodes)
-      call real2('mesh/gp', st%mesh_gp, gp_size, sc%meshes%ngp)
-      ! Gauss-point values are squared (von Mises, energies): beyond sqrt(huge) they overflow.
-      if (any(abs(st%mesh_gp) > sqrt(huge(1.0_wp)))) call bad('mesh/gp', 'a value beyond '// &
-        rtoa(sqrt(huge(1.0_wp)))//' (its square overflows double precision)')
-      call real2('mesh/fint', st%mesh_fint, 2, sc%meshes%nnodes)
-      call real1('mesh/energies', st%mesh_energies, 5)
-    end if
+    if (allocated(st%mesh_x)) call mailx_check_restart(sc%meshes, st)
     if (allocated(st%crack_beta) .neqv. sc%cracks%npts > 0) &
       call bad('cracks', 'the deck and the restart point disagree on cohesive interfaces')
     if (allocated(st%crack_beta)) then
@@ -285,35 +263,15 @@ contains
 
     subroutine bad(dataset, what)
       character(len=*), intent(in) :: dataset, what
-      if (len(dataset) > 0) then
-        call fatal('restart point '//st%where//'/'//dataset//': '//what)
-      else
-        call fatal('restart point '//st%where//': '//what)
-      end if
+      call restart_bad(st, dataset, what)
     end subroutine bad
 
     subroutine real1(dataset, a, n)
       character(len=*), intent(in) :: dataset
       real(wp), intent(in) :: a(:)
       integer, intent(in) :: n
-      integer :: i
-      if (size(a) /= n) call bad(dataset, itoa(size(a))//' values, expected '//itoa(n))
-      do i = 1, n
-        if (.not. ieee_is_finite(a(i))) call bad(dataset, 'value '//itoa(i)//' is '//rtoa(a(i)))
-      end do
+      call restart_check_real1(st, dataset, a, n)
     end subroutine real1
-
-    subroutine real2(dataset, a, n1, n2)
-      character(len=*), intent(in) :: dataset
-      real(wp), intent(in) :: a(:, :)
-      integer, intent(in) :: n1, n2
-      integer :: j
-      if (size(a, 1) /= n1 .or. size(a, 2) /= n2) call bad(dataset, 'shape ('//itoa(size(a, 2))//', '// &
-        itoa(size(a, 1))//') as h5py shows it, expected ('//itoa(n2)//', '//itoa(n1)//')')
-      do j = 1, n2
-        if (.not. all(ieee_is_finite(a(:, j)))) call bad(dataset, 'row '//itoa(j - 1)//' (from 0) is not finite')
-      end do
-    end subroutine real2
 
     !> what: the column's meaning for a 2-D dataset ('candidate ' of pairs).
     subroutine int1(dataset, a, n, lo, hi, what)

@@ -8,11 +8,13 @@ module fracas_scene
   use fracas_errors, only: input_error, status_t, failed
   use fracas_ids, only: inter_id, status_id, bm_rigid, bm_mesh
   use fracas_rbdy2, only: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_add_step_work, rbdy2_begin_step, &
-                          rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy
+                          rbdy2_detection_coor, rbdy2_end_step, rbdy2_kinetic_energy, rbdy2_energy_terms
+  use fracas_energy, only: energy_terms_t, energy_add
   use fracas_frame_2d, only: frame2_global
   use fracas_rbdy2_side, only: rigid2_add_impulse, rigid2_moment
   use fracas_mailx, only: mailx_t, mailx_build, mailx_begin_step, mailx_detection_coor, mailx_converged, &
-                          mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint, mailx_free
+                          mailx_end_step, mailx_kinetic_energy, mailx_set_contact_hint, mailx_free, &
+                          mailx_energy_terms
   use fracas_cracks, only: cracks_t, cracks_init, cracks_update
   use fracas_contactors, only: tactors_t, tactors_build, body_area_inertia, polygon_area_moments
   use fracas_contact_laws, only: law_t, law_from_input, law_czm, law_iqs_clb_g0, law_coupled_dof, n_internals, &
@@ -20,11 +22,13 @@ module fracas_scene
   use fracas_detection, only: detection_t, detection_init, detect_rough, detect_fine
   use fracas_contacts, only: contacts_t, history_t, history_build, history_find, history_from_contacts, &
                              history_find_near, history_knows_pair
+  use fracas_sides_2d, only: bodies2_t
   use fracas_nlgs, only: nlgs_t, nlgs_settings_t, nlgs_report_t, nlgs_init, nlgs_prepare, nlgs_solve, &
                          nlgs_update_cohesive
   implicit none
   private
-  public :: scene_t, step_report_t, scene_build, scene_free, scene_step, scene_body_impulses
+  public :: scene_t, step_report_t, scene_build, scene_free, scene_step, scene_body_impulses, scene_kinetic_energy, &
+            scene_energy_terms
 
   real(wp), parameter :: pi = acos(-1.0_wp)
 
@@ -77,9 +81,10 @@ module fracas_scene
     logical, allocatable :: movable(:)
     real(wp), allocatable :: q(:, :)         !< detection configuration of the step (rigid bodies)
     real(wp), allocatable :: xn(:, :)        !< detection configuration of the mesh nodes
-    ! Energy audit, accumulated over the run (J per unit thickness).
-    real(wp) :: kinetic0 = 0.0_wp, work_gravity = 0.0_wp, work_forces = 0.0_wp
-    real(wp) :: work_supports = 0.0_wp, dissipated = 0.0_wp
+    ! Energy audit, accumulated over the run (J per unit thickness): the initial
+    ! energy of all bodies and the contacts' dissipation; each body model keeps
+    ! its own terms (scene_energy_terms).
+    real(wp) :: kinetic0 = 0.0_wp, dissipated = 0.0_wp
     ! Cohesive zones: energy stored in the cohesive springs now (zero at the
     ! start: jumps start at 0), and the part of the dissipation due to damage.
     ! coh_work (per step) is unused beyond the check that it closes the audit.
@@ -297,7 +302,7 @@ contains
   !> mid-step), or the run stops. finishes_step = .false.: a sub-step of a cut
   !> step (the step counters stay; fracas_stepping).
   subroutine scene_step(sc, rep, status, finishes_step)
-    type(scene_t), intent(inout) :: sc
+    type(scene_t), intent(inout), target :: sc
     type(step_report_t), intent(out) :: rep
     type(status_t), intent(out), optional :: status
     logical, intent(in), optional :: finishes_step
@@ -305,8 +310,12 @@ contains
     logical :: pair_known, swapped, at_start, finishes
     integer(i8) :: t0, t1, t2, rate
     real(wp) :: margin, vmax, gap_end, stored, coh_work, released, dissipated_all
+    real(wp), allocatable :: imp(:, :)
     type(nlgs_report_t) :: newton_rep
+    type(bodies2_t) :: bd
     call system_clock(t0, rate)
+    bd%rbdy2 => sc%bodies
+    bd%mailx => sc%meshes
     t1 = t0
     finishes = .true.
     if (present(finishes_step)) finishes = finishes_step
@@ -381,9 +390,9 @@ contains
         end if
       end do
       call lap(rep%detect_seconds)
-      call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h)
+      call nlgs_prepare(sc%solver, c, bd, sc%laws, sc%h)
       call lap(rep%prepare_seconds)
-      call nlgs_solve(sc%solver, c, b, m, rep%nlgs)
+      call nlgs_solve(sc%solver, c, bd, rep%nlgs)
       call lap(rep%solve_seconds)
       rep%velocity_seconds = rep%nlgs%velocity_seconds
       ! Nonlinear meshed bodies: Newton iterations, the contact problem solved
@@ -403,9 +412,9 @@ contains
         sc%solver%s%max_checks = checks_left
         call lap(rep%bodies_seconds)
         b%v = b%vfree
-        call nlgs_prepare(sc%solver, c, b, m, sc%laws, sc%h, newton_again=.true.)
+        call nlgs_prepare(sc%solver, c, bd, sc%laws, sc%h, newton_again=.true.)
         call lap(rep%prepare_seconds)
-        call nlgs_solve(sc%solver, c, b, m, newton_rep)
+        call nlgs_solve(sc%solver, c, bd, newton_rep)
         call lap(rep%solve_seconds)
         rep%nlgs%sweeps = rep%nlgs%sweeps + newton_rep%sweeps
         rep%nlgs%updates = rep%nlgs%updates + newton_rep%updates
@@ -421,8 +430,8 @@ contains
       call cracks_update(sc%cracks, c, sc%laws, at_start, sc%step + 1)
 
       ! Energy audit of the step (before the begin state is overwritten).
-      call rbdy2_add_step_work(b, sc%time, sc%h, sc%theta, sc%work_gravity, sc%work_forces)
-      sc%work_supports = sc%work_supports + support_work(sc)
+      call scene_body_impulses(sc, imp)
+      call rbdy2_add_step_work(b, sc%time, sc%h, sc%theta, imp)
       dissipated_all = 0.0_wp
       nover = 0
       do k = 1, c%n
@@ -456,8 +465,7 @@ contains
         sc%substep = sc%substep + 1
       end if
       rep%contacts = c%n
-      rep%kinetic = rbdy2_kinetic_energy(b)
-      if (m%n > 0) rep%kinetic = rep%kinetic + mailx_kinetic_energy(m)
+      rep%kinetic = scene_kinetic_energy(sc)
     end associate
     call system_clock(t2)
     rep%step_seconds = real(t2 - t0, wp) / real(rate, wp)
@@ -473,14 +481,19 @@ contains
     end subroutine lap
   end subroutine scene_step
 
-  !> Work done on the free bodies by velocity-driven dofs through the contacts
-  !> during the step: minus the contact impulse on each driven dof times its mean velocity.
-  real(wp) function support_work(sc) result(w)
+  !> The kinetic energy of all bodies: each body model's.
+  real(wp) function scene_kinetic_energy(sc) result(e)
     type(scene_t), intent(in) :: sc
-    real(wp), allocatable :: imp(:, :)
-    call scene_body_impulses(sc, imp)
-    w = -0.5_wp * sum(imp * (sc%bodies%v + sc%bodies%vbegin), mask=sc%bodies%driven)
-  end function support_work
+    e = rbdy2_kinetic_energy(sc%bodies)
+    if (sc%meshes%n > 0) e = e + mailx_kinetic_energy(sc%meshes)
+  end function scene_kinetic_energy
+
+  !> The energy audit's terms of all bodies: each body model's, added up.
+  type(energy_terms_t) function scene_energy_terms(sc) result(e)
+    type(scene_t), intent(in) :: sc
+    e = rbdy2_energy_terms(sc%bodies)
+    call energy_add(e, mailx_energy_terms(sc%meshes))
+  end function scene_energy_terms
 
   !> Total contact impulse on every body (3,nb) from the current reactions.
   subroutine scene_body_impulses(sc, imp)

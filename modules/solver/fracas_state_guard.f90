@@ -21,16 +21,15 @@
 !> size of a meshed body is half the diagonal of the box around its reference
 !> nodes (mailx_radius), that of an exploded mesh's body its element's.
 module fracas_state_guard
-  use fracas_kinds, only: wp
+  use fracas_kinds, only: wp, resolvable_length
   use fracas_deck, only: deck_t, source_t
   use fracas_errors, only: input_error
   use fracas_ids, only: inter_names, bm_mesh
   use fracas_drives, only: drive_t, drive_value
-  use fracas_rbdy2, only: rbdy2_kinetic_energy
-  use fracas_mailx, only: mailx_radius
-  use fracas_bulk, only: gp_stress, gp_strain, gp_plastic_strain, gp_p
+  use fracas_rbdy2, only: rbdy2_kinetic_energy, rbdy2_energy_terms, rbdy2_fault, rbdy2_point_speed
+  use fracas_mailx, only: mailx_radius, mailx_fault
   use fracas_scene, only: scene_t
-  use fracas_strings, only: itoa, rtoa
+  use fracas_strings, only: itoa, rtoa, vec => rtoa_list
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_invalid, ieee_underflow, &
                                            ieee_get_halting_mode, ieee_set_halting_mode, ieee_set_flag
@@ -39,13 +38,6 @@ module fracas_state_guard
   public :: scene_check_start, scene_fault, resolvable_length
 
 contains
-
-  !> Largest coordinate (and step displacement) at which a body of this size
-  !> is still resolved to a thousandth of its size.
-  elemental real(wp) function resolvable_length(size) result(l)
-    real(wp), intent(in) :: size
-    l = 1.0e-3_wp * size / epsilon(1.0_wp)
-  end function resolvable_length
 
   !> Refuse a built scene that cannot run: input_error at the deck line that
   !> makes it so. Run from --check too. Floating-point traps are off while
@@ -108,7 +100,7 @@ contains
       integer :: j
       lim = resolvable_length(sc%bodies%avrd(k))
       pos = maxval(abs(sc%bodies%ref(1:2, k) + sc%bodies%x(1:2, k)))
-      moved = sc%h * speed_of(sc%bodies%v(:, k), sc%bodies%avrd(k))
+      moved = sc%h * rbdy2_point_speed(sc%bodies%v(:, k), sc%bodies%avrd(k))
       src = initial_state_source(k, 'RBDY2')
       if (.not. (pos <= lim)) call input_error(src%file, src%line, 0, 'body '//itoa(k)//' is at '//rtoa(pos)// &
         ' from the origin: beyond '//rtoa(lim)//', the largest coordinate at which double precision resolves '// &
@@ -297,85 +289,23 @@ contains
   function scene_fault(sc) result(msg)
     type(scene_t), intent(in) :: sc
     character(len=:), allocatable :: msg
-    integer :: k, n, ib
-    real(wp) :: lim, pos, moved
+    integer :: k, n
     msg = ''
     associate (b => sc%bodies, c => sc%contacts)
-      if (.not. (all(ieee_is_finite(b%x)) .and. all(ieee_is_finite(b%v)))) then
-        do k = 1, b%n
-          if (.not. all(ieee_is_finite(b%x(:, k)))) then
-            msg = body_name(k)//' has a non-finite position ('//vec(b%x(:, k))//')'
-            return
-          end if
-          if (.not. all(ieee_is_finite(b%v(:, k)))) then
-            msg = body_name(k)//' has a non-finite velocity ('//vec(b%v(:, k))//')'
-            return
-          end if
-        end do
-      end if
-      do k = 1, b%n
-        lim = resolvable_length(b%avrd(k))
-        pos = max(abs(b%ref(1, k) + b%x(1, k)), abs(b%ref(2, k) + b%x(2, k)))
-        moved = sc%h * speed_of(b%v(:, k), b%avrd(k))
-        if (pos > lim) then
-          msg = body_name(k)//' ran away: it is at '//rtoa(pos)//' from the origin, beyond '//rtoa(lim)// &
-                ' (what double precision resolves at its size)'
+      ! Each body model checks its own state (rigid, then meshed).
+      msg = rbdy2_fault(b, sc%h)
+      if (len(msg) > 0) return
+      associate (e => rbdy2_energy_terms(b))
+        if (.not. all(ieee_is_finite([rbdy2_kinetic_energy(b), e%work_gravity, e%work_forces, e%work_supports, &
+                                      sc%dissipated, sc%cohesive_energy, sc%damage_dissipated]))) then
+          msg = 'the energy audit overflowed (kinetic energy '//rtoa(rbdy2_kinetic_energy(b))//', work of gravity '// &
+                rtoa(e%work_gravity)//', of forces '//rtoa(e%work_forces)//', of supports '//rtoa(e%work_supports)// &
+                ', dissipated '//rtoa(sc%dissipated)//'): masses, forces or velocities beyond double precision'
           return
-        end if
-        if (moved > lim) then
-          msg = body_name(k)//' ran away: its velocity ('//vec(b%v(:, k))//') moves it by '//rtoa(moved)// &
-                ' in one step, beyond '//rtoa(lim)//' (what double precision resolves at its size)'
-          return
-        end if
-      end do
-      if (.not. all(ieee_is_finite([rbdy2_kinetic_energy(b), sc%work_gravity, sc%work_forces, sc%work_supports, sc%dissipated, &
-                                    sc%cohesive_energy, sc%damage_dissipated]))) then
-        msg = 'the energy audit overflowed (kinetic energy '//rtoa(rbdy2_kinetic_energy(b))//', work of gravity '//rtoa(sc%work_gravity)//', of forces '// &
-              rtoa(sc%work_forces)//', of supports '//rtoa(sc%work_supports)//', dissipated '// &
-              rtoa(sc%dissipated)//'): masses, forces or velocities beyond double precision'
-        return
-      end if
-      associate (m => sc%meshes)
-        if (m%nnodes > 0) then
-          if (.not. (all(ieee_is_finite(m%x)) .and. all(ieee_is_finite(m%v)))) then
-            do k = 1, m%nnodes
-              if (.not. (all(ieee_is_finite(m%x(:, k))) .and. all(ieee_is_finite(m%v(:, k))))) then
-                msg = 'MAILx body '//itoa(m%node_body(k))//' has a non-finite displacement or velocity at node '// &
-                      itoa(k - m%node_first(m%node_body(k)) + 1)//' (X '//vec(m%x(:, k))//', V '//vec(m%v(:, k))//')'
-                return
-              end if
-            end do
-          end if
-          if (.not. all(ieee_is_finite(m%gp))) then
-            msg = gauss_point_fault()
-            return
-          end if
-          do ib = 1, m%n
-            lim = resolvable_length(mailx_radius(m, ib))
-            do k = m%node_first(ib), m%node_first(ib + 1) - 1
-              pos = maxval(abs(m%ref(:, k) + m%x(:, k)))
-              moved = sc%h * maxval(abs(m%v(:, k)))
-              if (pos > lim) then
-                msg = 'MAILx body '//itoa(ib)//' ran away: node '//itoa(k - m%node_first(ib) + 1)//' is at '// &
-                      rtoa(pos)//' from the origin (displacement '//vec(m%x(:, k))//'), beyond '//rtoa(lim)// &
-                      ' (what double precision resolves at the body''s size, '//rtoa(mailx_radius(m, ib))//')'
-                return
-              end if
-              if (moved > lim) then
-                msg = 'MAILx body '//itoa(ib)//' ran away: the velocity of node '//itoa(k - m%node_first(ib) + 1)// &
-                      ' ('//vec(m%v(:, k))//') moves it by '//rtoa(moved)//' in one step, beyond '//rtoa(lim)// &
-                      ' (what double precision resolves at the body''s size, '//rtoa(mailx_radius(m, ib))//')'
-                return
-              end if
-            end do
-          end do
-          if (.not. all(ieee_is_finite([m%elastic, m%plastic_work, m%work_gravity, m%work_forces, m%work_supports]))) then
-            msg = 'the energy audit of the meshes overflowed (elastic '//rtoa(m%elastic)//', plastic work '// &
-                  rtoa(m%plastic_work)//', work of supports '//rtoa(m%work_supports)//')'
-            return
-          end if
         end if
       end associate
+      msg = mailx_fault(sc%meshes, sc%h)
+      if (len(msg) > 0) return
       n = c%n
       if (n == 0) return
       if (.not. all(ieee_is_finite(c%r(:, 1:n)))) then
@@ -401,39 +331,6 @@ contains
 
   contains
 
-    !> The first Gauss point with a non-finite state: body, element, point and quantity.
-    function gauss_point_fault() result(s)
-      character(len=:), allocatable :: s
-      integer :: b, e, g
-      character(len=*), parameter :: names(4) = [character(len=26) :: 'stress', 'strain', 'plastic strain', &
-                                                 'cumulative plastic strain']
-      integer, parameter :: first(4) = [gp_stress, gp_strain, gp_plastic_strain, gp_p]
-      integer :: q
-      s = 'a MAILx body has a non-finite Gauss-point state'
-      associate (m => sc%meshes)
-        do b = 1, m%n
-          do e = m%elem_first(b), m%elem_first(b + 1) - 1
-            do g = m%el_gp(e), m%el_gp(e + 1) - 1
-              if (all(ieee_is_finite(m%gp(:, g)))) cycle
-              do q = 4, 1, -1
-                if (.not. all(ieee_is_finite(m%gp(first(q):merge(first(q), first(q) + 3, q == 4), g)))) &
-                  s = 'MAILx body '//itoa(b)//' has a non-finite '//trim(names(q))//' at Gauss point '// &
-                      itoa(g - m%el_gp(e) + 1)//' of its element '//itoa(e - m%elem_first(b) + 1)//' ('// &
-                      vec(m%gp(first(q):merge(first(q), first(q) + 3, q == 4), g))//')'
-              end do
-              return
-            end do
-          end do
-        end do
-      end associate
-    end function gauss_point_fault
-
-    function body_name(k) result(s)
-      integer, intent(in) :: k
-      character(len=:), allocatable :: s
-      s = 'body '//itoa(sc%bodies%number(k))
-    end function body_name
-
     function contact_name(k) result(s)
       integer, intent(in) :: k
       character(len=:), allocatable :: s
@@ -455,26 +352,9 @@ contains
     end function side
   end function scene_fault
 
-  !> Largest speed of a point of a rigid body of radius r: |v| + |omega| r.
-  pure real(wp) function speed_of(v, r) result(s)
-    real(wp), intent(in) :: v(3), r
-    s = max(abs(v(1)), abs(v(2))) + abs(v(3)) * r
-  end function speed_of
-
   pure logical function normal_positive(x)
     real(wp), intent(in) :: x
     normal_positive = x >= tiny(1.0_wp) .and. x <= huge(1.0_wp)
   end function normal_positive
 
-  !> '(a, b, c)' in short form.
-  function vec(x) result(s)
-    real(wp), intent(in) :: x(:)
-    character(len=:), allocatable :: s
-    integer :: i
-    s = ''
-    do i = 1, size(x)
-      if (i > 1) s = s//', '
-      s = s//rtoa(x(i))
-    end do
-  end function vec
 end module fracas_state_guard
