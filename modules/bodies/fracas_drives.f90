@@ -62,8 +62,8 @@ contains
     end if
   end function drive_value
 
-  ! The drives of a rigid body model whose dofs are arrays (ndof, nbodies)
-  ! (rbdy3; rbdy2 keeps its own loops until the body-model seam, issue 19).
+  ! The drives of a rigid body model whose dofs are arrays (ndof, nbodies):
+  ! rbdy2 and rbdy3.
 
   !> All the drives of DRV_DOF.DAT (body serial number = index): velocity-driven
   !> dofs marked, their inverse mass 0, a body with every dof driven clamped.
@@ -91,16 +91,21 @@ contains
   end subroutine drives_build
 
   !> Start of a step [t, t+h]: force drives theta-averaged into fext; a
-  !> velocity-driven dof starts at its value at t.
-  subroutine drives_begin_step(drives, t, h, theta, fext, vbegin)
+  !> velocity-driven dof starts at its value at t (unless impose_start is false:
+  !> it keeps its previous velocity).
+  subroutine drives_begin_step(drives, t, h, theta, fext, vbegin, impose_start)
     type(drive_t), intent(in) :: drives(:)
     real(wp), intent(in) :: t, h, theta
     real(wp), intent(inout) :: fext(:, :), vbegin(:, :)
+    logical, intent(in), optional :: impose_start
     integer :: k
+    logical :: impose
+    impose = .true.
+    if (present(impose_start)) impose = impose_start
     do k = 1, size(drives)
       associate (d => drives(k))
         if (d%is_velocity) then
-          vbegin(d%dof, d%body) = drive_value(d, t)
+          if (impose) vbegin(d%dof, d%body) = drive_value(d, t)
         else
           fext(d%dof, d%body) = fext(d%dof, d%body) + (1.0_wp - theta) * drive_value(d, t) + &
                                 theta * drive_value(d, t + h)

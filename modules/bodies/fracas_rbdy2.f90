@@ -9,8 +9,7 @@ module fracas_rbdy2
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use fracas_deck, only: driven_dof_input_t, dof_record_t
   use fracas_restart_h5, only: restart_state_t, restart_check_real2
-  use fracas_errors, only: input_error
-  use fracas_drives, only: drive_t, drive_from_input, drive_value
+  use fracas_drives, only: drive_t, drives_build, drives_begin_step, drives_impose_end, drives_add_work
   implicit none
   private
   public :: rbdy2_t, rbdy2_init, rbdy2_add_drives, rbdy2_add_step_work, rbdy2_begin_step, &
@@ -73,21 +72,7 @@ contains
   subroutine rbdy2_add_drives(b, inputs)
     type(rbdy2_t), intent(inout) :: b
     type(driven_dof_input_t), intent(in) :: inputs(:)
-    integer :: k
-    deallocate (b%drives)
-    allocate (b%drives(size(inputs)))
-    do k = 1, size(inputs)
-      associate (inp => inputs(k), d => b%drives(k))
-        if (inp%body < 1 .or. inp%body > b%n) &
-          call input_error(inp%src%file, inp%src%line, 9, 'driven body number out of range')
-        d = drive_from_input(inp, inp%body)
-        if (d%is_velocity) then
-          b%driven(d%dof, d%body) = .true.
-          b%inv_mass(d%dof, d%body) = 0.0_wp
-          b%clamped(d%body) = all(b%driven(:, d%body))
-        end if
-      end associate
-    end do
+    call drives_build(inputs, b%driven, b%inv_mass, b%clamped, b%drives)
   end subroutine rbdy2_add_drives
 
   !> Start of a step [t, t+h]: external forces (gravity, theta-averaged driven
@@ -95,33 +80,17 @@ contains
   subroutine rbdy2_begin_step(b, t, h, theta)
     type(rbdy2_t), intent(inout) :: b
     real(wp), intent(in) :: t, h, theta
-    integer :: i, k
+    integer :: i
     do i = 1, b%n
       b%fext(1, i) = b%mass(1, i) * b%gravity(1)
       b%fext(2, i) = b%mass(2, i) * b%gravity(2)
       b%fext(3, i) = 0.0_wp
     end do
-    do k = 1, size(b%drives)
-      associate (d => b%drives(k))
-        if (.not. d%is_velocity) b%fext(d%dof, d%body) = b%fext(d%dof, d%body) + &
-          (1.0_wp - theta) * drive_value(d, t) + theta * drive_value(d, t + h)
-      end associate
-    end do
     ! A driven dof starts the step at its imposed value (LMGC90's RBDY2, whatever
     ! DOF.INI said), or from its previous velocity; it ends at its imposed value.
-    if (b%driven_start_imposed) then
-      do k = 1, size(b%drives)
-        associate (d => b%drives(k))
-          if (d%is_velocity) b%vbegin(d%dof, d%body) = drive_value(d, t)
-        end associate
-      end do
-    end if
+    call drives_begin_step(b%drives, t, h, theta, b%fext, b%vbegin, impose_start=b%driven_start_imposed)
     b%vfree = b%vbegin + h * b%inv_mass * b%fext
-    do k = 1, size(b%drives)
-      associate (d => b%drives(k))
-        if (d%is_velocity) b%vfree(d%dof, d%body) = drive_value(d, t + h)
-      end associate
-    end do
+    call drives_impose_end(b%drives, t, h, b%vfree)
     b%v = b%vfree
   end subroutine rbdy2_begin_step
 
@@ -140,14 +109,7 @@ contains
       if (.not. b%driven(1, k)) b%work_gravity = b%work_gravity + b%mass(1, k) * b%gravity(1) * dx(1)
       if (.not. b%driven(2, k)) b%work_gravity = b%work_gravity + b%mass(2, k) * b%gravity(2) * dx(2)
     end do
-    do k = 1, size(b%drives)
-      associate (d => b%drives(k))
-        if (d%is_velocity) cycle
-        dx = h * ((1.0_wp - theta) * b%vbegin(:, d%body) + theta * b%v(:, d%body))
-        b%work_forces = b%work_forces + dx(d%dof) * ((1.0_wp - theta) * drive_value(d, t) + &
-                                                     theta * drive_value(d, t + h))
-      end associate
-    end do
+    call drives_add_work(b%drives, t, h, theta, b%vbegin, b%v, b%work_forces)
     b%work_supports = b%work_supports + (-0.5_wp * sum(imp * (b%v + b%vbegin), mask=b%driven))
   end subroutine rbdy2_add_step_work
 
